@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs every system dependency of mimic from Debian packages. Idempotent; quiet on success.
+# Usage: sudo scripts/setup.sh   (or as root)
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build ccache pkg-config git
+  clang libclang-rt-14-dev          # libFuzzer build of the fuzz targets (optional)
+  # core libraries
+  libeigen3-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  # physics
+  libmujoco-dev
+  # networks: LibTorch with OpenBLAS (without OpenBLAS LibTorch falls back to the reference BLAS,
+  # 10-40x slower; see DESIGN.md section 2)
+  libtorch-dev libopenblas0-pthread libopenblas-dev
+  # many machines
+  libopenmpi-dev openmpi-bin
+  # pictures and video: headless GL for MuJoCo's renderer, ffmpeg for MP4/GIF
+  libosmesa6-dev libegl-dev libgl-dev libglfw3-dev ffmpeg
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+log=$(mktemp)
+if ! { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+  cat "$log" >&2
+  echo "setup.sh: installing ${missing[*]} failed (log above)" >&2
+  exit 1
+fi
+rm -f "$log"
+# LibTorch must pick the pthread OpenBLAS as the system BLAS.
+if [ -e /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 ]; then
+  $SUDO update-alternatives --quiet --set libblas.so.3-x86_64-linux-gnu \
+    /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 >/dev/null 2>&1 || true
+fi

@@ -1,0 +1,127 @@
+#include "motion/clip.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+const char* to_string(LoopMode m) { return m == LoopMode::Wrap ? "wrap" : "none"; }
+
+double Clip::duration() const {
+  return frames.size() < 2 ? 0.0 : static_cast<double>(frames.size() - 1) / fps;
+}
+
+Pose rest_pose(const Skeleton& sk, const Vec3& root_pos) {
+  Pose p;
+  p.root_pos = root_pos;
+  p.rot.assign(sk.joints.size(), Quat::Identity());
+  return p;
+}
+
+double revolute_angle(const Joint& j, const Quat& q) { return twist_angle(q, j.axis); }
+
+void Clip::validate() const {
+  skeleton.validate();
+  if (!(fps > 0.0) || !std::isfinite(fps)) throw Error("clip '" + name + "': frame rate must be positive");
+  if (frames.empty()) throw Error("clip '" + name + "' has no frames");
+  const std::size_t nj = skeleton.joints.size();
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const Pose& p = frames[f];
+    const std::string where = "clip '" + name + "' frame " + std::to_string(f);
+    if (p.rot.size() != nj)
+      throw Error(where + ": has " + std::to_string(p.rot.size()) + " rotations, skeleton has " +
+                  std::to_string(nj) + " joints");
+    if (!p.root_pos.allFinite()) throw Error(where + ": root position is not finite");
+    for (std::size_t j = 0; j < nj; ++j) {
+      if (!p.rot[j].coeffs().allFinite() || std::abs(p.rot[j].norm() - 1.0) > 1e-4)
+        throw Error(where + ": rotation of joint '" + skeleton.joints[j].name + "' is not a unit quaternion");
+    }
+  }
+}
+
+namespace {
+
+// Rigid yaw-plus-translation that maps a wrap clip's first frame onto its last.
+struct CycleShift {
+  Quat yaw = Quat::Identity();
+  Vec3 from = Vec3::Zero();  // start root position, ground plane
+  Vec3 to = Vec3::Zero();    // end root position, ground plane
+
+  Pose apply(const Pose& p, int times) const {
+    Pose out = p;
+    for (int k = 0; k < times; ++k) {
+      Vec3 d = out.root_pos - from;
+      d.z() = 0;
+      const Vec3 moved = yaw * d;
+      out.root_pos = Vec3(to.x() + moved.x(), to.y() + moved.y(), out.root_pos.z());
+      out.rot[0] = yaw * out.rot[0];
+    }
+    for (int k = 0; k > times; --k) {
+      Vec3 d = out.root_pos - to;
+      d.z() = 0;
+      const Vec3 moved = yaw.conjugate() * d;
+      out.root_pos = Vec3(from.x() + moved.x(), from.y() + moved.y(), out.root_pos.z());
+      out.rot[0] = yaw.conjugate() * out.rot[0];
+    }
+    return out;
+  }
+};
+
+CycleShift cycle_shift(const Clip& c) {
+  CycleShift s;
+  const Pose& a = c.frames.front();
+  const Pose& b = c.frames.back();
+  s.yaw = heading_rotation(heading_angle(b.rot[0]) - heading_angle(a.rot[0]));
+  s.from = Vec3(a.root_pos.x(), a.root_pos.y(), 0);
+  s.to = Vec3(b.root_pos.x(), b.root_pos.y(), 0);
+  return s;
+}
+
+// Frame i for any integer i: wrap clips repeat with drift, others clamp.
+Pose frame_at(const Clip& c, const CycleShift& shift, long i) {
+  const long n = c.num_frames();
+  if (c.loop != LoopMode::Wrap || n < 2) {
+    return c.frames[static_cast<std::size_t>(std::clamp(i, 0L, n - 1))];
+  }
+  const long period = n - 1;
+  long k = i >= 0 ? i / period : -((-i + period - 1) / period);
+  const long local = i - k * period;
+  return shift.apply(c.frames[static_cast<std::size_t>(local)], static_cast<int>(k));
+}
+
+Vec3 catmull_rom(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, double u) {
+  const double u2 = u * u, u3 = u2 * u;
+  return 0.5 * ((2.0 * p1) + (-p0 + p2) * u + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2 +
+                (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * u3);
+}
+
+}  // namespace
+
+Pose Clip::sample(double t) const {
+  if (frames.empty()) throw Error("clip '" + name + "' has no frames to sample");
+  if (frames.size() == 1 || !std::isfinite(t)) return frames.front();
+  const double x = t * fps;
+  const double n1 = static_cast<double>(frames.size() - 1);
+  double fi = std::floor(x);
+  double u = x - fi;
+  if (loop != LoopMode::Wrap) {
+    if (x <= 0.0) return frames.front();
+    if (x >= n1) return frames.back();
+  } else {
+    // Very long times: keep the index representable.
+    fi = std::clamp(fi, -1e9, 1e9);
+  }
+  const long i = static_cast<long>(fi);
+  const CycleShift shift = loop == LoopMode::Wrap ? cycle_shift(*this) : CycleShift{};
+  const Pose p0 = frame_at(*this, shift, i - 1), p1 = frame_at(*this, shift, i);
+  const Pose p2 = frame_at(*this, shift, i + 1), p3 = frame_at(*this, shift, i + 2);
+  Pose out;
+  out.root_pos = catmull_rom(p0.root_pos, p1.root_pos, p2.root_pos, p3.root_pos, u);
+  out.rot.resize(p1.rot.size());
+  for (std::size_t j = 0; j < p1.rot.size(); ++j) out.rot[j] = p1.rot[j].slerp(u, p2.rot[j]).normalized();
+  return out;
+}
+
+}  // namespace mimic

@@ -1,0 +1,46 @@
+#pragma once
+// A motion clip: poses of one skeleton sampled at a fixed rate.
+// Frame i is at time i / fps; the duration is (num_frames - 1) / fps. A looping ("wrap") clip's
+// last frame is the same pose as its first, displaced by the root's drift over one cycle
+// (DeepMimic's convention), so sampling past the end continues the motion.
+#include <string>
+#include <vector>
+
+#include "motion/skeleton.hpp"
+
+namespace mimic {
+
+// One frame. rot[0] is the root's rotation in the world; rot[j] for j > 0 is joint j's rotation
+// relative to its rest frame (identity for fixed joints, about `axis` for revolute ones).
+struct Pose {
+  Vec3 root_pos = Vec3::Zero();
+  std::vector<Quat> rot;
+};
+
+enum class LoopMode { None, Wrap };
+const char* to_string(LoopMode m);
+
+struct Clip {
+  std::string name;
+  Skeleton skeleton;
+  double fps = 30.0;
+  LoopMode loop = LoopMode::None;
+  std::vector<Pose> frames;
+
+  int num_frames() const { return static_cast<int>(frames.size()); }
+  double duration() const;
+  // Pose at time t (seconds): cubic (Catmull-Rom) root position, slerp rotations. A wrap clip
+  // continues past its ends, accumulating root drift and heading change per cycle; otherwise t is
+  // clamped to [0, duration].
+  Pose sample(double t) const;
+  // Throws Error on the first inconsistency (fps, frame sizes, non-unit quaternions, ...).
+  void validate() const;
+};
+
+// The identity pose of a skeleton with the root at `root_pos`.
+Pose rest_pose(const Skeleton& sk, const Vec3& root_pos = Vec3::Zero());
+
+// Rotation of a revolute joint's pose quaternion about its axis (radians).
+double revolute_angle(const Joint& j, const Quat& q);
+
+}  // namespace mimic

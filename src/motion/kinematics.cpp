@@ -1,0 +1,80 @@
+#include "motion/kinematics.hpp"
+
+#include <limits>
+
+namespace mimic {
+
+void forward_kinematics(const Skeleton& sk, const Pose& pose, LinkFrames& out) {
+  const std::size_t n = sk.joints.size();
+  out.joint_pos.resize(n);
+  out.joint_rot.resize(n);
+  out.joint_pos[0] = pose.root_pos;
+  out.joint_rot[0] = pose.rot[0];
+  for (std::size_t j = 1; j < n; ++j) {
+    const Joint& jt = sk.joints[j];
+    const auto p = static_cast<std::size_t>(jt.parent);
+    out.joint_pos[j] = out.joint_pos[p] + out.joint_rot[p] * jt.offset;
+    out.joint_rot[j] = out.joint_rot[p] * jt.rest * pose.rot[j];
+  }
+  out.site_pos.resize(sk.sites.size());
+  for (std::size_t s = 0; s < sk.sites.size(); ++s) {
+    const auto j = static_cast<std::size_t>(sk.sites[s].joint);
+    out.site_pos[s] = out.joint_pos[j] + out.joint_rot[j] * sk.sites[s].offset;
+  }
+}
+
+LinkFrames forward_kinematics(const Skeleton& sk, const Pose& pose) {
+  LinkFrames out;
+  forward_kinematics(sk, pose, out);
+  return out;
+}
+
+std::vector<PoseVelocity> clip_velocities(const Clip& clip) {
+  const int n = clip.num_frames();
+  const std::size_t nj = clip.skeleton.joints.size();
+  std::vector<PoseVelocity> out(static_cast<std::size_t>(n));
+  if (n < 2) {
+    for (auto& v : out) v.joint_ang.assign(nj, Vec3::Zero());
+    return out;
+  }
+  const double dt = 1.0 / clip.fps;
+  const bool wrap = clip.loop == LoopMode::Wrap;
+  for (int i = 0; i < n; ++i) {
+    // Neighbouring poses; Clip::sample handles the seam of wrap clips.
+    const bool has_prev = i > 0 || wrap;
+    const bool has_next = i < n - 1 || wrap;
+    const Pose& cur = clip.frames[static_cast<std::size_t>(i)];
+    const Pose prev = has_prev ? (i > 0 ? clip.frames[static_cast<std::size_t>(i - 1)] : clip.sample(-dt)) : cur;
+    const Pose next = has_next ? (i < n - 1 ? clip.frames[static_cast<std::size_t>(i + 1)] : clip.sample((i + 1) * dt)) : cur;
+    const double span = dt * ((has_prev ? 1 : 0) + (has_next ? 1 : 0));
+    PoseVelocity& v = out[static_cast<std::size_t>(i)];
+    v.root_lin = (next.root_pos - prev.root_pos) / span;
+    v.root_ang = angular_velocity(prev.rot[0], next.rot[0], span);
+    v.joint_ang.assign(nj, Vec3::Zero());
+    for (std::size_t j = 1; j < nj; ++j) {
+      // Local frame: next = prev * exp(w * span).
+      v.joint_ang[j] = quat_to_rotvec(prev.rot[j].conjugate() * next.rot[j]) / span;
+    }
+  }
+  return out;
+}
+
+HeadingFrame HeadingFrame::of(const Pose& pose) {
+  HeadingFrame h;
+  h.origin = Vec3(pose.root_pos.x(), pose.root_pos.y(), 0.0);
+  h.yaw = heading_rotation(heading_angle(pose.rot[0]));
+  return h;
+}
+
+double clip_min_height(const Clip& clip) {
+  double lo = std::numeric_limits<double>::infinity();
+  LinkFrames fk;
+  for (const Pose& p : clip.frames) {
+    forward_kinematics(clip.skeleton, p, fk);
+    for (const Vec3& x : fk.joint_pos) lo = std::min(lo, x.z());
+    for (const Vec3& x : fk.site_pos) lo = std::min(lo, x.z());
+  }
+  return lo;
+}
+
+}  // namespace mimic

@@ -1,0 +1,209 @@
+#include "motion/retarget.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/text_scanner.hpp"
+#include "motion/kinematics.hpp"
+
+namespace mimic {
+
+RetargetMap parse_retarget_map(std::string_view text, const std::string& source) {
+  RetargetMap map;
+  map.source = source;
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw ParseError(source, e.mark.line + 1, "not valid YAML: " + e.msg);
+  }
+  auto fail = [&](const YAML::Node& n, const std::string& msg) -> void {
+    throw ParseError(source, n.IsDefined() ? n.Mark().line + 1 : 0, msg);
+  };
+  if (!root.IsMap()) fail(root, "expected a mapping with 'joints'");
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    if (key != "joints" && key != "scale" && key != "sites" && key != "end_effectors" && key != "ground_fix")
+      fail(kv.first, "unknown key '" + key + "' (joints, scale, sites, end_effectors, ground_fix)");
+  }
+  const YAML::Node joints = root["joints"];
+  if (!joints.IsMap() || joints.size() == 0) fail(joints.IsDefined() ? joints : root, "'joints' must map target joint names to source joint names");
+  for (const auto& kv : joints) {
+    if (!kv.second.IsScalar()) fail(kv.second, "joints: the source of '" + kv.first.Scalar() + "' must be a joint name");
+    map.joints.emplace_back(kv.first.Scalar(), kv.second.Scalar());
+  }
+  if (const YAML::Node s = root["scale"]; s.IsDefined()) {
+    if (s.IsScalar() && s.Scalar() == "auto") {
+      map.scale = 0.0;
+    } else if (!s.IsScalar() || !parse_double(s.Scalar(), map.scale) || !(map.scale > 0)) {
+      fail(s, "'scale' must be a positive number or auto");
+    }
+  }
+  if (const YAML::Node sites = root["sites"]; sites.IsDefined()) {
+    if (!sites.IsSequence()) fail(sites, "'sites' must be a list");
+    for (const YAML::Node& s : sites) {
+      RetargetSite site;
+      if (!s.IsMap() || !s["name"].IsScalar() || !s["joint"].IsScalar() || !s["offset"].IsSequence() || s["offset"].size() != 3)
+        fail(s, "a site needs name, joint and offset: [x, y, z]");
+      site.name = s["name"].Scalar();
+      site.joint = s["joint"].Scalar();
+      for (std::size_t k = 0; k < 3; ++k)
+        if (!parse_double(s["offset"][k].Scalar(), site.offset[static_cast<Eigen::Index>(k)])) fail(s["offset"], "site offset must be 3 numbers");
+      map.sites.push_back(site);
+    }
+  }
+  if (const YAML::Node e = root["end_effectors"]; e.IsDefined()) {
+    if (!e.IsSequence()) fail(e, "'end_effectors' must be a list of names");
+    for (const YAML::Node& n : e) {
+      if (!n.IsScalar()) fail(n, "'end_effectors' must be a list of names");
+      map.end_effectors.push_back(n.Scalar());
+    }
+  }
+  if (const YAML::Node g = root["ground_fix"]; g.IsDefined()) {
+    if (!g.IsScalar() || (g.Scalar() != "true" && g.Scalar() != "false")) fail(g, "'ground_fix' must be true or false");
+    map.ground_fix = g.Scalar() == "true";
+  }
+  return map;
+}
+
+RetargetMap load_retarget_map(const std::filesystem::path& path) {
+  return parse_retarget_map(read_text_file(path), path.string());
+}
+
+namespace {
+
+// Direction of the "bone" that leaves joint j in the rest pose: towards the mapped child (or the
+// first child / first site) of the target; zero if there is none.
+Vec3 bone_direction(const Skeleton& sk, const LinkFrames& rest, int j, const std::vector<int>& preferred_child) {
+  int child = preferred_child[static_cast<std::size_t>(j)];
+  if (child < 0) {
+    for (int c = j + 1; c < sk.num_joints(); ++c)
+      if (sk.joints[static_cast<std::size_t>(c)].parent == j) { child = c; break; }
+  }
+  if (child >= 0) return rest.joint_pos[static_cast<std::size_t>(child)] - rest.joint_pos[static_cast<std::size_t>(j)];
+  return Vec3::Zero();
+}
+
+}  // namespace
+
+Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map, RetargetReport* report) {
+  src.validate();
+  Skeleton target = target_in;
+  auto need = [&](const Skeleton& sk, const std::string& name, const char* side) {
+    const int i = sk.find(name);
+    if (i < 0) throw Error(map.source + ": " + side + " joint '" + name + "' does not exist in the " + side + " skeleton");
+    return i;
+  };
+  for (const RetargetSite& s : map.sites) target.sites.push_back(Site{s.name, need(target, s.joint, "target"), s.offset});
+  target.validate();
+  const int nt = target.num_joints();
+  std::vector<int> source_of(static_cast<std::size_t>(nt), -1);
+  for (const auto& [t, s] : map.joints) {
+    source_of[static_cast<std::size_t>(need(target, t, "target"))] = need(src.skeleton, s, "source");
+  }
+  if (source_of[0] < 0) throw Error(map.source + ": the target root '" + target.joints[0].name + "' must be mapped");
+
+  // Rest poses and the bone-by-bone alignment of the target's rest onto the source's.
+  const LinkFrames src_rest = forward_kinematics(src.skeleton, rest_pose(src.skeleton));
+  const LinkFrames tgt_rest = forward_kinematics(target, rest_pose(target));
+  std::vector<int> mapped_child(static_cast<std::size_t>(nt), -1);
+  for (int c = nt - 1; c > 0; --c)
+    if (source_of[static_cast<std::size_t>(c)] >= 0) mapped_child[static_cast<std::size_t>(target.joints[static_cast<std::size_t>(c)].parent)] = c;
+
+  double scale = map.scale;
+  if (scale <= 0.0) {
+    double tlo = std::numeric_limits<double>::infinity(), thi = -tlo, slo = tlo, shi = -tlo;
+    for (int t = 0; t < nt; ++t) {
+      const int s = source_of[static_cast<std::size_t>(t)];
+      if (s < 0) continue;
+      tlo = std::min(tlo, tgt_rest.joint_pos[static_cast<std::size_t>(t)].z());
+      thi = std::max(thi, tgt_rest.joint_pos[static_cast<std::size_t>(t)].z());
+      slo = std::min(slo, src_rest.joint_pos[static_cast<std::size_t>(s)].z());
+      shi = std::max(shi, src_rest.joint_pos[static_cast<std::size_t>(s)].z());
+    }
+    if (!(shi - slo > 1e-9) || !(thi - tlo > 1e-9)) throw Error(map.source + ": cannot infer the scale (mapped joints have no height); give 'scale'");
+    scale = (thi - tlo) / (shi - slo);
+  }
+
+  // align[t]: global rotation applied to the target's rest frame so its bone points like the
+  // source's rest bone. delta = source rotation relative to its rest, transferred globally.
+  std::vector<Quat> align(static_cast<std::size_t>(nt), Quat::Identity());
+  for (int t = 0; t < nt; ++t) {
+    const int s = source_of[static_cast<std::size_t>(t)];
+    const int tc = mapped_child[static_cast<std::size_t>(t)];
+    if (s < 0 || tc < 0) continue;
+    const Vec3 dt = bone_direction(target, tgt_rest, t, mapped_child);
+    const Vec3 ds = src_rest.joint_pos[static_cast<std::size_t>(source_of[static_cast<std::size_t>(tc)])] -
+                    src_rest.joint_pos[static_cast<std::size_t>(s)];
+    if (dt.norm() > 1e-9 && ds.norm() > 1e-9) align[static_cast<std::size_t>(t)] = Quat::FromTwoVectors(dt, ds);
+  }
+
+  Clip out;
+  out.name = src.name;
+  out.fps = src.fps;
+  out.loop = src.loop;
+  out.skeleton = target;
+  out.frames.reserve(src.frames.size());
+  LinkFrames sfk;
+  std::vector<Quat> tglob(static_cast<std::size_t>(nt));
+  for (const Pose& sp : src.frames) {
+    forward_kinematics(src.skeleton, sp, sfk);
+    Pose tp = rest_pose(target);
+    tp.root_pos = scale * sfk.joint_pos[static_cast<std::size_t>(source_of[0])];
+    for (int t = 0; t < nt; ++t) {
+      const auto tu = static_cast<std::size_t>(t);
+      const Joint& jt = target.joints[tu];
+      const Quat parent_frame = t == 0 ? Quat::Identity() : tglob[static_cast<std::size_t>(jt.parent)] * jt.rest;
+      const int s = source_of[tu];
+      if (s < 0 || jt.type == JointType::Fixed) {
+        tglob[tu] = parent_frame * tp.rot[tu];
+        continue;
+      }
+      const auto su = static_cast<std::size_t>(s);
+      const Quat desired = sfk.joint_rot[su] * src_rest.joint_rot[su].conjugate() * align[tu] * tgt_rest.joint_rot[tu];
+      Quat local = (parent_frame.conjugate() * desired).normalized();
+      if (jt.type == JointType::Revolute) local = Quat(Eigen::AngleAxisd(twist_angle(local, jt.axis), jt.axis));
+      tp.rot[tu] = canonical(local);
+      tglob[tu] = parent_frame * tp.rot[tu];
+    }
+    out.frames.push_back(std::move(tp));
+  }
+
+  double shift = 0.0;
+  if (map.ground_fix) {
+    shift = -clip_min_height(out);
+    for (Pose& p : out.frames) p.root_pos.z() += shift;
+  }
+
+  if (report) {
+    report->scale = scale;
+    report->ground_shift = shift;
+    report->effectors.clear();
+    LinkFrames tfk;
+    for (const std::string& name : map.end_effectors) {
+      const int tj = target.find(name);
+      if (tj < 0) throw Error(map.source + ": end effector '" + name + "' is not a target joint");
+      const int sj = source_of[static_cast<std::size_t>(tj)];
+      if (sj < 0) throw Error(map.source + ": end effector '" + name + "' is not mapped to a source joint");
+      EffectorError e{name, 0.0, 0.0};
+      for (std::size_t f = 0; f < src.frames.size(); ++f) {
+        forward_kinematics(src.skeleton, src.frames[f], sfk);
+        forward_kinematics(target, out.frames[f], tfk);
+        const Vec3 want = scale * (sfk.joint_pos[static_cast<std::size_t>(sj)] - sfk.joint_pos[static_cast<std::size_t>(source_of[0])]);
+        const Vec3 got = tfk.joint_pos[static_cast<std::size_t>(tj)] - tfk.joint_pos[0];
+        const double err = (want - got).norm();
+        e.mean += err;
+        e.max = std::max(e.max, err);
+      }
+      e.mean /= static_cast<double>(std::max<std::size_t>(1, src.frames.size()));
+      report->effectors.push_back(e);
+    }
+  }
+  return out;
+}
+
+}  // namespace mimic

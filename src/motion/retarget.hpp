@@ -1,0 +1,47 @@
+#pragma once
+// Retargeting a clip onto another skeleton by a joint-name map (a small YAML file, see
+// docs/retargeting.md). Each mapped target joint takes the source joint's rotation relative to
+// its rest pose, after aligning the two rest poses bone by bone (a T-pose source drives an
+// arms-down target correctly). Root translation is scaled; one vertical shift per clip puts the
+// lowest contact point on the ground.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "motion/clip.hpp"
+
+namespace mimic {
+
+struct RetargetSite {
+  std::string name, joint;
+  Vec3 offset = Vec3::Zero();  // in the target joint's frame, metres
+};
+
+struct RetargetMap {
+  std::vector<std::pair<std::string, std::string>> joints;  // target joint <- source joint
+  double scale = 0.0;                     // target/source length ratio; 0 = from the rest poses
+  std::vector<RetargetSite> sites;        // extra target sites (e.g. soles) kept in the output
+  std::vector<std::string> end_effectors; // target joints or sites whose error is reported
+  bool ground_fix = true;
+  std::string source;                     // where the map came from, for errors
+};
+
+RetargetMap parse_retarget_map(std::string_view text, const std::string& source);
+RetargetMap load_retarget_map(const std::filesystem::path& path);
+
+struct EffectorError {
+  std::string name;
+  double mean = 0.0, max = 0.0;  // metres, root-relative, target vs scaled source
+};
+
+struct RetargetReport {
+  double scale = 1.0;
+  double ground_shift = 0.0;  // metres added to the root height
+  std::vector<EffectorError> effectors;
+};
+
+// Throws Error naming the map file when a mapped joint is missing on either side.
+Clip retarget(const Clip& source, const Skeleton& target, const RetargetMap& map, RetargetReport* report = nullptr);
+
+}  // namespace mimic
