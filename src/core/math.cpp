@@ -62,8 +62,9 @@ Quat canonical(const Quat& q) {
 }
 
 double rotation_distance(const Quat& a, const Quat& b) {
-  const double d = std::min(1.0, std::abs(a.dot(b)));
-  return 2.0 * std::acos(d);
+  // atan2 form: accurate for tiny angles, where acos of a dot product near 1 is not.
+  const Quat d = a.conjugate() * b;
+  return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
 }
 
 }  // namespace mimic

@@ -79,16 +79,20 @@ CycleShift cycle_shift(const Clip& c) {
   return s;
 }
 
-// Frame i for any integer i: wrap clips repeat with drift, others clamp.
+// Frame i of one cycle for i in [-1, n]: the clip's own frames, and beyond the ends the
+// neighbouring cycle's frames (wrap clips) or linearly extrapolated root positions (others).
 Pose frame_at(const Clip& c, const CycleShift& shift, long i) {
   const long n = c.num_frames();
-  if (c.loop != LoopMode::Wrap || n < 2) {
-    return c.frames[static_cast<std::size_t>(std::clamp(i, 0L, n - 1))];
+  if (i >= 0 && i < n) return c.frames[static_cast<std::size_t>(i)];
+  const bool before = i < 0;
+  if (c.loop == LoopMode::Wrap && n > 2) {
+    return before ? shift.apply(c.frames[static_cast<std::size_t>(n - 2)], -1) : shift.apply(c.frames[1], 1);
   }
-  const long period = n - 1;
-  long k = i >= 0 ? i / period : -((-i + period - 1) / period);
-  const long local = i - k * period;
-  return shift.apply(c.frames[static_cast<std::size_t>(local)], static_cast<int>(k));
+  const Pose& edge = c.frames[before ? 0 : static_cast<std::size_t>(n - 1)];
+  const Pose& inner = c.frames[before ? std::min<std::size_t>(1, static_cast<std::size_t>(n - 1)) : static_cast<std::size_t>(std::max(0L, n - 2))];
+  Pose p = edge;
+  p.root_pos = 2.0 * edge.root_pos - inner.root_pos;
+  return p;
 }
 
 Vec3 catmull_rom(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, double u) {
@@ -102,18 +106,16 @@ Vec3 catmull_rom(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
 Pose Clip::sample(double t) const {
   if (frames.empty()) throw Error("clip '" + name + "' has no frames to sample");
   if (frames.size() == 1 || !std::isfinite(t)) return frames.front();
-  const double x = t * fps;
-  const double n1 = static_cast<double>(frames.size() - 1);
-  double fi = std::floor(x);
-  double u = x - fi;
-  if (loop != LoopMode::Wrap) {
-    if (x <= 0.0) return frames.front();
-    if (x >= n1) return frames.back();
-  } else {
-    // Very long times: keep the index representable.
-    fi = std::clamp(fi, -1e9, 1e9);
+  const double dur = duration();
+  // Wrap clips: whole cycles k are the first cycle displaced k times by the cycle shift.
+  long cycles = 0;
+  if (loop == LoopMode::Wrap) {
+    cycles = static_cast<long>(std::clamp(std::floor(t / dur), -1e6, 1e6));
+    t -= static_cast<double>(cycles) * dur;
   }
-  const long i = static_cast<long>(fi);
+  const double x = std::clamp(t * fps, 0.0, static_cast<double>(frames.size() - 1));
+  const long i = std::min(static_cast<long>(std::floor(x)), static_cast<long>(frames.size()) - 2);
+  const double u = x - static_cast<double>(i);
   const CycleShift shift = loop == LoopMode::Wrap ? cycle_shift(*this) : CycleShift{};
   const Pose p0 = frame_at(*this, shift, i - 1), p1 = frame_at(*this, shift, i);
   const Pose p2 = frame_at(*this, shift, i + 1), p3 = frame_at(*this, shift, i + 2);
@@ -121,7 +123,7 @@ Pose Clip::sample(double t) const {
   out.root_pos = catmull_rom(p0.root_pos, p1.root_pos, p2.root_pos, p3.root_pos, u);
   out.rot.resize(p1.rot.size());
   for (std::size_t j = 0; j < p1.rot.size(); ++j) out.rot[j] = p1.rot[j].slerp(u, p2.rot[j]).normalized();
-  return out;
+  return cycles == 0 ? out : shift.apply(out, static_cast<int>(cycles));
 }
 
 }  // namespace mimic

@@ -1,8 +1,9 @@
 #pragma once
 // A motion clip: poses of one skeleton sampled at a fixed rate.
-// Frame i is at time i / fps; the duration is (num_frames - 1) / fps. A looping ("wrap") clip's
-// last frame is the same pose as its first, displaced by the root's drift over one cycle
-// (DeepMimic's convention), so sampling past the end continues the motion.
+// Frame i is at time i / fps; the duration is (num_frames - 1) / fps. A looping ("wrap") clip
+// repeats: cycle k is the first cycle moved k times by the yaw and ground translation that take
+// the first frame's root to the last frame's (DeepMimic's convention; the last frame need not
+// equal the first, the seam is where the clip jumps back).
 #include <string>
 #include <vector>
 

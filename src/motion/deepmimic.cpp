@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -90,6 +91,30 @@ Vec3 read_vec(const JsonReader& js, const YAML::Node& obj, const char* prefix, c
   return v;
 }
 
+// Frames of unequal durations (DeepMimic allows them) resampled to the shortest duration:
+// linear root positions, slerp rotations, the end kept exactly.
+Clip resample_irregular(const Clip& in, const std::vector<double>& times, double dt) {
+  Clip out = in;
+  const double total = times.back();
+  const auto intervals = std::max(1L, std::lround(total / dt));
+  out.fps = static_cast<double>(intervals) / total;
+  out.frames.clear();
+  std::size_t seg = 0;
+  for (long k = 0; k <= intervals; ++k) {
+    const double t = std::min(total, static_cast<double>(k) / out.fps);
+    while (seg + 2 < times.size() && times[seg + 1] <= t) ++seg;
+    const double span = times[seg + 1] - times[seg];
+    const double u = std::clamp((t - times[seg]) / span, 0.0, 1.0);
+    const Pose& a = in.frames[seg];
+    const Pose& b = in.frames[seg + 1];
+    Pose p = a;
+    p.root_pos = (1.0 - u) * a.root_pos + u * b.root_pos;
+    for (std::size_t j = 0; j < p.rot.size(); ++j) p.rot[j] = canonical(a.rot[j].slerp(u, b.rot[j]).normalized());
+    out.frames.push_back(std::move(p));
+  }
+  return out;
+}
+
 }  // namespace
 
 Quat deepmimic_to_mimic() { return basis(); }
@@ -142,8 +167,9 @@ DeepMimicCharacter parse_deepmimic_character(std::string_view text, const std::s
       } else {
         js.fail(jn, jw + ": unsupported \"Type\" '" + type + "' (spherical, revolute, fixed)");
       }
-      for (const auto& [lo, hi] : j.limits)
-        if (lo > hi) js.fail(jn, jw + ": a lower limit exceeds its upper limit");
+      // DeepMimic writes LimLow > LimHigh (e.g. 1, 0) for "no limit".
+      if (std::any_of(j.limits.begin(), j.limits.end(), [](const auto& lh) { return lh.first > lh.second; }))
+        j.limits.clear();
     }
     j.torque_limit = js.number_or(jn, "TorqueLim", jw, 0.0);
     if (j.torque_limit < 0) js.fail(jn, jw + ": negative \"TorqueLim\"");
@@ -231,7 +257,8 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
   }
   const YAML::Node frames = js.array(root, "Frames", "motion");
   if (frames.size() == 0) js.fail(frames, "\"Frames\" is empty");
-  double dt0 = 0.0;
+  std::vector<double> times;  // start time of each frame
+  double min_dt = 0.0, last_dt = 0.0;
   std::vector<double> row(width);
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const YAML::Node fr = frames[f];
@@ -241,14 +268,14 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
       js.fail(fr, where + ": has " + std::to_string(fr.size()) + " values, the character needs " +
                       std::to_string(width) + " (dt, root position 3, root rotation 4, then per joint)");
     for (std::size_t k = 0; k < width; ++k) row[k] = js.number(fr[k], where + " value " + std::to_string(k));
+    // Each row's first value is its duration; the last row's is unused (often 0).
     const double dt = row[0];
-    if (f == 0) {
+    if (f + 1 < frames.size() || frames.size() == 1) {
       if (!(dt > 1e-6) || dt > 10.0) js.fail(fr, where + ": frame duration must be between 1e-6 and 10 s");
-      dt0 = dt;
-    } else if (f + 1 < frames.size() && std::abs(dt - dt0) > 1e-3 * dt0) {
-      js.fail(fr, where + ": frame duration " + std::to_string(dt) + " differs from the first frame's " +
-                      std::to_string(dt0) + "; mimic needs a constant frame rate");
+      min_dt = f == 0 ? dt : std::min(min_dt, dt);
     }
+    times.push_back(f == 0 ? 0.0 : times.back() + last_dt);
+    last_dt = dt;
     Pose p = rest_pose(sk);
     p.root_pos = to_mimic(Vec3(row[1], row[2], row[3]));
     std::size_t k = 4;
@@ -267,7 +294,9 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
     }
     clip.frames.push_back(std::move(p));
   }
-  clip.fps = 1.0 / dt0;
+  clip.fps = 1.0 / min_dt;
+  if (times.size() > 1 && std::abs(times.back() - min_dt * static_cast<double>(times.size() - 1)) > 1e-6 * times.back())
+    clip = resample_irregular(clip, times, min_dt);
   return clip;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // DeepMimic's character JSON (skeleton, bodies, PD gains) and motion txt. DeepMimic is Y up with
 // the character facing +X; everything is converted to mimic's Z-up, X-forward frame on import
-// and back on export. Euler "AttachTheta" angles are DeepMimic's Rz*Ry*Rx.
+// and back on export. Euler "AttachTheta" angles are DeepMimic's Rz*Ry*Rx. Motions whose frames
+// have unequal durations are resampled to the shortest one (linear root, slerp rotations).
 #include <filesystem>
 #include <string>
 #include <string_view>

@@ -24,7 +24,9 @@ Clip resample(const Clip& clip, double fps) {
   }
   if (intervals > 10'000'000) throw Error("resample: more than 10 million frames");
   out.frames.reserve(static_cast<std::size_t>(intervals + 1));
-  for (long k = 0; k <= intervals; ++k) out.frames.push_back(clip.sample(static_cast<double>(k) / out.fps));
+  for (long k = 0; k < intervals; ++k) out.frames.push_back(clip.sample(static_cast<double>(k) / out.fps));
+  // The end of the first cycle (not the start of the next one, which a wrap clip jumps to).
+  out.frames.push_back(clip.frames.back());
   return out;
 }
 

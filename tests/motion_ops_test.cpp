@@ -1,0 +1,203 @@
+// Resampling, mirroring, velocities and the heading frame.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "motion/bvh.hpp"
+#include "motion/deepmimic.hpp"
+#include "motion/kinematics.hpp"
+#include "motion/mirror.hpp"
+#include "motion/resample.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+// A two-link chain: root -> left_leg (spherical) and right_leg (spherical), mirror images.
+Skeleton tiny_skeleton() {
+  Skeleton sk;
+  sk.joints.push_back(Joint{"root", -1, JointType::Free, Vec3::Zero(), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+  sk.joints.push_back(Joint{"left_leg", 0, JointType::Spherical, Vec3(0, 0.1, 0), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+  sk.joints.push_back(Joint{"right_leg", 0, JointType::Spherical, Vec3(0, -0.1, 0), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+  sk.sites.push_back(Site{"left_foot", 1, Vec3(0, 0, -0.5)});
+  sk.sites.push_back(Site{"right_foot", 2, Vec3(0, 0, -0.5)});
+  return sk;
+}
+
+Clip load_walk() {
+  const auto dir = test::shared_data();
+  const Skeleton sk = load_deepmimic_character(dir / "deepmimic/characters/humanoid3d.txt").skeleton;
+  return load_deepmimic_motion(dir / "deepmimic/motions/humanoid3d_walk.txt", sk);
+}
+
+double max_pose_difference(const Clip& a, const Clip& b) {
+  double worst = 0;
+  for (std::size_t f = 0; f < a.frames.size(); ++f) {
+    worst = std::max(worst, (a.frames[f].root_pos - b.frames[f].root_pos).norm());
+    for (std::size_t j = 0; j < a.frames[f].rot.size(); ++j)
+      worst = std::max(worst, rotation_distance(a.frames[f].rot[j], b.frames[f].rot[j]));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(Resample, LinearRootMotionIsReproducedExactly) {
+  Clip c;
+  c.skeleton = tiny_skeleton();
+  c.fps = 10;
+  for (int i = 0; i < 5; ++i) {
+    Pose p = rest_pose(c.skeleton, Vec3(0.3 * i, 0, 1));
+    p.rot[1] = axis_rotation('y', 0.2 * i);
+    c.frames.push_back(p);
+  }
+  const Clip up = resample(c, 40);
+  ASSERT_EQ(up.num_frames(), 17);
+  EXPECT_DOUBLE_EQ(up.fps, 40);
+  // Frame 3 at t = 0.075 s: x = 0.3 * 0.75 = 0.225 (Catmull-Rom is exact on lines), the leg
+  // turned by 0.2 * 0.75 = 0.15 rad (slerp is exact on a constant spin).
+  EXPECT_NEAR(up.frames[3].root_pos.x(), 0.225, 1e-12);
+  EXPECT_NEAR(twist_angle(up.frames[3].rot[1], Vec3::UnitY()), 0.15, 1e-12);
+  EXPECT_NEAR(up.duration(), c.duration(), 1e-12);
+}
+
+TEST(Resample, UpThenDownReturnsTheOriginalFrames) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const Clip walk = load_walk();
+  const Clip up = resample(walk, 120);
+  EXPECT_EQ(up.num_frames(), 4 * (walk.num_frames() - 1) + 1);
+  EXPECT_NEAR(up.duration(), walk.duration(), 1e-9);  // a wrap clip keeps its exact cycle
+  const Clip down = resample(up, walk.fps);
+  ASSERT_EQ(down.num_frames(), walk.num_frames());
+  EXPECT_LT(max_pose_difference(walk, down), 1e-9);
+}
+
+TEST(Resample, CmuDownAndUpStaysWithinStatedError) {
+  std::filesystem::path path;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", path);
+  const Clip orig = load_bvh(path, AxisConvention{"y", "z", 0.056444});
+  // 120 Hz -> 30 Hz (seed 000's rate) -> 120 Hz: link positions stay within 1 cm on average,
+  // 5 cm at worst (fast hand motion loses detail at 30 Hz).
+  const Clip back = resample(resample(orig, 30), orig.fps);
+  const int n = std::min(orig.num_frames(), back.num_frames());
+  ASSERT_GT(n, 980);
+  double sum = 0, worst = 0;
+  long count = 0;
+  LinkFrames a, b;
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(orig.skeleton, orig.frames[static_cast<std::size_t>(f)], a);
+    forward_kinematics(back.skeleton, back.frames[static_cast<std::size_t>(f)], b);
+    for (std::size_t j = 0; j < a.joint_pos.size(); ++j) {
+      const double e = (a.joint_pos[j] - b.joint_pos[j]).norm();
+      sum += e;
+      worst = std::max(worst, e);
+      ++count;
+    }
+  }
+  EXPECT_LT(sum / static_cast<double>(count), 0.01);
+  EXPECT_LT(worst, 0.05);
+}
+
+TEST(Resample, IrregularDeepMimicFramesAreMadeUniform) {
+  std::filesystem::path ch, path;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_roll.txt", path);
+  // humanoid3d_roll.txt: 120 durations, one of them 0.032666 instead of 0.016666.
+  const Clip roll = load_deepmimic_motion(path, load_deepmimic_character(ch).skeleton);
+  const double total = 119 * 0.016666 + 0.032666;
+  EXPECT_NEAR(roll.duration(), total, 1e-9);
+  EXPECT_EQ(roll.num_frames(), 122);
+  EXPECT_NEAR(roll.fps, 1.0 / 0.016666, 0.05);  // adjusted so whole frames span the duration
+}
+
+TEST(Mirror, PairsByName) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", p);
+  const Skeleton sk = load_deepmimic_character(p).skeleton;
+  const std::vector<int> twin = mirror_map(sk);
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("chest"))], sk.find("chest"));
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("right_knee"))], sk.find("left_knee"));
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("left_wrist"))], sk.find("right_wrist"));
+}
+
+TEST(Mirror, CmuNamesPair) {
+  std::filesystem::path path;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", path);
+  const Skeleton sk = load_bvh(path, AxisConvention{"y", "z", 0.056444}).skeleton;
+  const std::vector<int> twin = mirror_map(sk);
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("LHipJoint"))], sk.find("RHipJoint"));
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("lhand"))], sk.find("rhand"));
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("LeftShoulder"))], sk.find("RightShoulder"));
+  EXPECT_EQ(twin[static_cast<std::size_t>(sk.find("lowerback"))], sk.find("lowerback"));
+}
+
+TEST(Mirror, ReflectsLinkPositionsOfASymmetricSkeleton) {
+  Clip c;
+  c.skeleton = tiny_skeleton();
+  Pose p = rest_pose(c.skeleton, Vec3(1, 2, 1));
+  p.rot[0] = axis_rotation('z', 0.4);
+  p.rot[1] = axis_rotation('x', 0.3) * axis_rotation('y', 0.5);
+  p.rot[2] = axis_rotation('y', -0.2);
+  c.frames = {p};
+  const Clip m = mirror(c);
+  const LinkFrames a = forward_kinematics(c.skeleton, c.frames[0]);
+  const LinkFrames b = forward_kinematics(m.skeleton, m.frames[0]);
+  // The mirrored left foot is the original right foot reflected through y = 0, and vice versa.
+  const Vec3 flip(1, -1, 1);
+  EXPECT_TRUE(b.site_pos[0].isApprox(a.site_pos[1].cwiseProduct(flip), 1e-12));
+  EXPECT_TRUE(b.site_pos[1].isApprox(a.site_pos[0].cwiseProduct(flip), 1e-12));
+  EXPECT_NEAR(heading_angle(m.frames[0].rot[0]), -0.4, 1e-12);  // turning left becomes right
+}
+
+TEST(Mirror, TwiceIsIdentity) {
+  std::filesystem::path path;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", path);
+  const Clip cmu = load_bvh(path, AxisConvention{"y", "z", 0.056444});
+  EXPECT_LT(max_pose_difference(cmu, mirror(mirror(cmu))), 1e-9);
+  const Clip walk = load_walk();
+  EXPECT_LT(max_pose_difference(walk, mirror(mirror(walk))), 1e-9);
+  EXPECT_GT(max_pose_difference(walk, mirror(walk)), 0.1);  // and once is not
+}
+
+TEST(Kinematics, VelocitiesOfAConstantSpinAndDrift) {
+  Clip c;
+  c.skeleton = tiny_skeleton();
+  c.fps = 20;
+  for (int i = 0; i < 6; ++i) {
+    Pose p = rest_pose(c.skeleton, Vec3(0.1 * i, 0, 1));
+    p.rot[0] = axis_rotation('z', 0.05 * i);
+    p.rot[1] = axis_rotation('x', 0.1 * i);
+    c.frames.push_back(p);
+  }
+  const auto v = clip_velocities(c);
+  for (const PoseVelocity& pv : v) {  // one-sided at the ends, central inside: all exact here
+    EXPECT_TRUE(pv.root_lin.isApprox(Vec3(2.0, 0, 0), 1e-9));
+    EXPECT_TRUE(pv.root_ang.isApprox(Vec3(0, 0, 1.0), 1e-9));
+    EXPECT_TRUE(pv.joint_ang[1].isApprox(Vec3(2.0, 0, 0), 1e-9));
+  }
+}
+
+TEST(Kinematics, WrapClipContinuesWithDrift) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const Clip walk = load_walk();
+  const Vec3 drift = walk.frames.back().root_pos - walk.frames.front().root_pos;
+  // One cycle later the pose is the same, displaced by the cycle's drift on the ground.
+  const Pose a = walk.sample(0.2), b = walk.sample(0.2 + walk.duration());
+  EXPECT_NEAR((b.root_pos - a.root_pos).x(), drift.x(), 0.02);
+  EXPECT_NEAR(b.root_pos.z(), a.root_pos.z(), 1e-9);
+  for (std::size_t j = 1; j < a.rot.size(); ++j) EXPECT_LT(rotation_distance(a.rot[j], b.rot[j]), 1e-9);
+}
+
+TEST(Kinematics, HeadingFrameExpressesPointsRelativeToFacing) {
+  Pose p;
+  p.root_pos = Vec3(1, 1, 0.9);
+  p.rot = {axis_rotation('z', kPi / 2) * axis_rotation('y', 0.3)};  // facing +Y, pitched
+  const HeadingFrame h = HeadingFrame::of(p);
+  EXPECT_TRUE(h.origin.isApprox(Vec3(1, 1, 0)));
+  // A point 1 m along world +Y from the root is 1 m straight ahead.
+  EXPECT_TRUE(h.to_local(Vec3(1, 2, 0.9)).isApprox(Vec3(1, 0, 0.9), 1e-12));
+}
