@@ -1,1 +1,27 @@
-int main() { return 0; }
+// The `mimic` command: motion tools now; training, evaluation and rendering as they arrive.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"mimic: physics-based character controllers learnt from human motion"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "mimic 0.1.0");
+  mimic::app::add_motion_commands(app);
+  mimic::app::add_demo_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const mimic::Error& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    spdlog::error("unexpected failure: {}", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,140 @@
+// mimic motion info|convert|mirror|retarget|plot
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <limits>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "motion/clip_io.hpp"
+#include "motion/deepmimic.hpp"
+#include "motion/kinematics.hpp"
+#include "motion/mirror.hpp"
+#include "motion/resample.hpp"
+#include "motion/retarget.hpp"
+#include "render/clip_svg.hpp"
+
+namespace mimic::app {
+
+void add_load_options(CLI::App& cmd, LoadOptions& opts) {
+  cmd.add_option("--character", opts.character, "DeepMimic character file for a .txt motion (default: guessed from the name)");
+  cmd.add_option("--asf", opts.asf, "ASF skeleton for an .amc motion (default: guessed from the name)");
+  cmd.add_option("--up", opts.axes.up, "BVH: source up axis (x, y, z, -z, ...)")->capture_default_str();
+  cmd.add_option("--forward", opts.axes.forward, "BVH: axis the character faces at rest")->capture_default_str();
+  cmd.add_option("--scale", opts.axes.scale, "BVH: metres per file unit (CMU BVH: 0.056444)")->capture_default_str();
+  cmd.add_option("--amc-fps", opts.amc_fps, "AMC: frame rate (not stored in AMC files)")->capture_default_str();
+}
+
+std::string clip_summary(const Clip& clip) {
+  double root_lo = std::numeric_limits<double>::infinity(), root_hi = -root_lo, lowest = root_lo, highest = -root_lo;
+  LinkFrames fk;
+  for (const Pose& p : clip.frames) {
+    root_lo = std::min(root_lo, p.root_pos.z());
+    root_hi = std::max(root_hi, p.root_pos.z());
+    forward_kinematics(clip.skeleton, p, fk);
+    for (const auto* pts : {&fk.joint_pos, &fk.site_pos})
+      for (const Vec3& x : *pts) lowest = std::min(lowest, x.z()), highest = std::max(highest, x.z());
+  }
+  const Vec3 travel = clip.frames.back().root_pos - clip.frames.front().root_pos;
+  int spherical = 0, revolute = 0, fixed = 0;
+  for (const Joint& j : clip.skeleton.joints) {
+    spherical += j.type == JointType::Spherical;
+    revolute += j.type == JointType::Revolute;
+    fixed += j.type == JointType::Fixed;
+  }
+  return fmt::format(
+      "clip        {}\n"
+      "skeleton    {} joints ({} spherical, {} revolute, {} fixed), {} DoF, {} sites\n"
+      "frames      {} at {:.3f} Hz = {:.3f} s, loop {}\n"
+      "root height {:.3f} .. {:.3f} m; all points {:.3f} .. {:.3f} m\n"
+      "travel      {:.3f} m on the ground over the clip, heading {:+.0f} deg\n",
+      clip.name, clip.skeleton.num_joints(), spherical, revolute, fixed, clip.skeleton.dof_count(), clip.skeleton.sites.size(),
+      clip.num_frames(), clip.fps, clip.duration(), to_string(clip.loop), root_lo, root_hi, lowest, highest,
+      std::hypot(travel.x(), travel.y()),
+      rad_to_deg(heading_angle(clip.frames.back().rot[0]) - heading_angle(clip.frames.front().rot[0])));
+}
+
+void write_motion(const Clip& clip, const std::filesystem::path& out) {
+  const std::string ext = out.extension().string();
+  if (ext == ".mclip") save_clip(clip, out);
+  else if (ext == ".txt") write_file_atomic(out, write_deepmimic_motion(clip));
+  else if (ext == ".svg") write_file_atomic(out, clip_picture_svg(clip));
+  else throw Error(out.string() + ": unknown output format '" + ext + "' (expected .mclip, .txt for DeepMimic, or .svg)");
+}
+
+namespace {
+
+struct MotionArgs {
+  std::filesystem::path input, output, map, target;
+  LoadOptions load;
+  double fps = 0.0;
+  int panels = 8;
+};
+
+Skeleton load_target_skeleton(const std::filesystem::path& path) {
+  if (path.extension() == ".mclip") return load_motion(path).skeleton;
+  return load_deepmimic_character(path).skeleton;
+}
+
+}  // namespace
+
+void add_motion_commands(CLI::App& app) {
+  auto args = std::make_shared<MotionArgs>();
+  CLI::App* motion = app.add_subcommand("motion", "inspect, convert, mirror and retarget motion clips");
+  motion->require_subcommand(1);
+
+  CLI::App* info = motion->add_subcommand("info", "summary of a clip (.mclip, .bvh, .amc, DeepMimic .txt)");
+  info->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
+  add_load_options(*info, args->load);
+  info->callback([args] { fmt::print("{}", clip_summary(load_motion(args->input, args->load))); });
+
+  CLI::App* convert = motion->add_subcommand("convert", "convert a clip to .mclip, DeepMimic .txt or an .svg picture");
+  convert->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
+  convert->add_option("-o,--output", args->output, "output file")->required();
+  convert->add_option("--fps", args->fps, "resample to this frame rate first");
+  add_load_options(*convert, args->load);
+  convert->callback([args] {
+    Clip clip = load_motion(args->input, args->load);
+    if (args->fps > 0) clip = resample(clip, args->fps);
+    write_motion(clip, args->output);
+    spdlog::info("wrote {} ({} frames at {:.3f} Hz)", args->output.string(), clip.num_frames(), clip.fps);
+  });
+
+  CLI::App* mirror_cmd = motion->add_subcommand("mirror", "swap left and right");
+  mirror_cmd->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
+  mirror_cmd->add_option("-o,--output", args->output, "output file")->required();
+  add_load_options(*mirror_cmd, args->load);
+  mirror_cmd->callback([args] {
+    write_motion(mirror(load_motion(args->input, args->load)), args->output);
+    spdlog::info("wrote {}", args->output.string());
+  });
+
+  CLI::App* ret = motion->add_subcommand("retarget", "put a clip on another character by a joint-name map");
+  ret->add_option("clip", args->input, "source motion file")->required()->check(CLI::ExistingFile);
+  ret->add_option("--map", args->map, "retarget map (YAML, see docs/retargeting.md)")->required()->check(CLI::ExistingFile);
+  ret->add_option("--target", args->target, "target character: DeepMimic character file or a .mclip")->required()->check(CLI::ExistingFile);
+  ret->add_option("-o,--output", args->output, "output file")->required();
+  add_load_options(*ret, args->load);
+  ret->callback([args] {
+    RetargetReport report;
+    const Clip out = retarget(load_motion(args->input, args->load), load_target_skeleton(args->target),
+                              load_retarget_map(args->map), &report);
+    write_motion(out, args->output);
+    fmt::print("scale {:.3f}, ground shift {:+.3f} m\nend-effector error (root-relative, vs scaled source):\n", report.scale, report.ground_shift);
+    for (const EffectorError& e : report.effectors) fmt::print("  {:<16} mean {:.3f} m  max {:.3f} m\n", e.name, e.mean, e.max);
+    spdlog::info("wrote {}", args->output.string());
+  });
+
+  CLI::App* plot = motion->add_subcommand("plot", "draw a clip as an SVG filmstrip with height curves");
+  plot->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
+  plot->add_option("-o,--output", args->output, "output .svg")->required();
+  plot->add_option("--panels", args->panels, "frames to draw")->capture_default_str()->check(CLI::Range(1, 64));
+  add_load_options(*plot, args->load);
+  plot->callback([args] {
+    write_file_atomic(args->output, clip_picture_svg(load_motion(args->input, args->load), ClipPictureOptions{args->panels, 180}));
+    spdlog::info("wrote {}", args->output.string());
+  });
+}
+
+}  // namespace mimic::app
