@@ -1,0 +1,184 @@
+#include "sim/world.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+World::World(const CharacterModel& ch, const SimConfig& cfg) : World(ch, build_mjcf(ch, MjcfOptions{1.0 / cfg.physics_hz}), cfg) {}
+
+World::World(const CharacterModel& ch, const std::string& mjcf, const SimConfig& cfg) : ch_(ch), cfg_(cfg) {
+  if (!(cfg.physics_hz > 0) || !(cfg.control_hz > 0) || cfg.control_hz > cfg.physics_hz)
+    throw Error("simulation rates: need 0 < control_hz <= physics_hz");
+  const double ratio = cfg.physics_hz / cfg.control_hz;
+  substeps_ = static_cast<int>(std::lround(ratio));
+  if (std::abs(ratio - substeps_) > 1e-6)
+    throw Error("simulation rates: physics_hz must be a whole multiple of control_hz");
+  init(mjcf);
+}
+
+World::~World() {
+  if (d_) mj_deleteData(d_);
+  if (m_) mj_deleteModel(m_);
+}
+
+void World::init(const std::string& mjcf) {
+  // MuJoCo 2.2 reads XML from files; a virtual file system keeps this in memory.
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  const char* name = "character.xml";
+  if (mj_makeEmptyFileVFS(&vfs, name, static_cast<int>(mjcf.size())) != 0) throw Error("MuJoCo: cannot allocate a virtual file");
+  const int idx = mj_findFileVFS(&vfs, name);
+  std::memcpy(vfs.filedata[idx], mjcf.data(), mjcf.size());
+  char err[1000] = "";
+  m_ = mj_loadXML(name, &vfs, err, sizeof err);
+  mj_deleteVFS(&vfs);
+  if (!m_) throw Error("MuJoCo rejected the model of '" + ch_.name + "': " + err);
+  m_->opt.timestep = 1.0 / cfg_.physics_hz;
+  d_ = mj_makeData(m_);
+  const Skeleton& sk = ch_.skeleton;
+  for (const Joint& j : sk.joints) {
+    const int b = mj_name2id(m_, mjOBJ_BODY, j.name.c_str());
+    if (b < 0) throw Error("model of '" + ch_.name + "' has no body named '" + j.name + "'");
+    body_.push_back(b);
+    const int jid = j.type == JointType::Fixed ? -1 : mj_name2id(m_, mjOBJ_JOINT, j.name.c_str());
+    if (j.type != JointType::Fixed && jid < 0) throw Error("model of '" + ch_.name + "' has no joint named '" + j.name + "'");
+    qpos_.push_back(jid < 0 ? -1 : m_->jnt_qposadr[jid]);
+    dof_.push_back(jid < 0 ? -1 : m_->jnt_dofadr[jid]);
+  }
+  target_.assign(sk.joints.size(), Quat::Identity());
+  mj_forward(m_, d_);
+}
+
+double World::time() const { return d_->time; }
+
+void World::set_state(const Pose& pose, const PoseVelocity* vel) {
+  const Skeleton& sk = ch_.skeleton;
+  if (pose.rot.size() != sk.joints.size()) throw Error("set_state: pose has the wrong number of joints");
+  mj_resetData(m_, d_);
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int a = qpos_[j], v = dof_[j];
+    const Quat& q = pose.rot[j];
+    switch (sk.joints[j].type) {
+      case JointType::Free: {
+        for (int k = 0; k < 3; ++k) d_->qpos[a + k] = pose.root_pos[k];
+        d_->qpos[a + 3] = q.w(), d_->qpos[a + 4] = q.x(), d_->qpos[a + 5] = q.y(), d_->qpos[a + 6] = q.z();
+        if (vel) {
+          const Vec3 ang_local = q.conjugate() * vel->root_ang;  // MuJoCo: free-joint spin in the body frame
+          for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->root_lin[k], d_->qvel[v + 3 + k] = ang_local[k];
+        }
+        break;
+      }
+      case JointType::Spherical:
+        d_->qpos[a] = q.w(), d_->qpos[a + 1] = q.x(), d_->qpos[a + 2] = q.y(), d_->qpos[a + 3] = q.z();
+        if (vel) for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->joint_ang[j][k];
+        break;
+      case JointType::Revolute:
+        d_->qpos[a] = revolute_angle(sk.joints[j], q);
+        if (vel) d_->qvel[v] = vel->joint_ang[j].dot(sk.joints[j].axis);
+        break;
+      case JointType::Fixed: break;
+    }
+  }
+  target_ = pose.rot;
+  mj_forward(m_, d_);
+}
+
+Pose World::pose() const {
+  const Skeleton& sk = ch_.skeleton;
+  Pose p = rest_pose(sk);
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int a = qpos_[j];
+    switch (sk.joints[j].type) {
+      case JointType::Free:
+        p.root_pos = Vec3(d_->qpos[a], d_->qpos[a + 1], d_->qpos[a + 2]);
+        p.rot[j] = Quat(d_->qpos[a + 3], d_->qpos[a + 4], d_->qpos[a + 5], d_->qpos[a + 6]).normalized();
+        break;
+      case JointType::Spherical:
+        p.rot[j] = Quat(d_->qpos[a], d_->qpos[a + 1], d_->qpos[a + 2], d_->qpos[a + 3]).normalized();
+        break;
+      case JointType::Revolute:
+        p.rot[j] = Quat(Eigen::AngleAxisd(d_->qpos[a], sk.joints[j].axis));
+        break;
+      case JointType::Fixed: break;
+    }
+  }
+  return p;
+}
+
+void World::set_pd_targets(const Pose& targets) {
+  if (targets.rot.size() != ch_.skeleton.joints.size()) throw Error("set_pd_targets: wrong number of joints");
+  target_ = targets.rot;
+}
+
+void World::apply_pd() {
+  // Spring part of PD on the position predicted one step ahead (q + dt * qdot): stable for stiff
+  // gains at 600 Hz; the damping part is MuJoCo's joint damping, integrated implicitly.
+  const Skeleton& sk = ch_.skeleton;
+  const double dt = m_->opt.timestep;
+  for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+    const Joint& jt = sk.joints[j];
+    const int a = qpos_[j], v = dof_[j];
+    const double kp = ch_.gains[j].kp, lim = jt.torque_limit > 0 ? jt.torque_limit : 1e9;
+    if (jt.type == JointType::Spherical) {
+      const Quat q(d_->qpos[a], d_->qpos[a + 1], d_->qpos[a + 2], d_->qpos[a + 3]);
+      const Vec3 w(d_->qvel[v], d_->qvel[v + 1], d_->qvel[v + 2]);
+      const Quat predicted = (q * rotvec_to_quat(w * dt)).normalized();
+      const Vec3 err = quat_to_rotvec(predicted.conjugate() * target_[j]);
+      for (int k = 0; k < 3; ++k) d_->qfrc_applied[v + k] = std::clamp(kp * err[k], -lim, lim);
+    } else if (jt.type == JointType::Revolute) {
+      const double predicted = d_->qpos[a] + dt * d_->qvel[v];
+      const double err = revolute_angle(jt, target_[j]) - predicted;
+      d_->qfrc_applied[v] = std::clamp(kp * err, -lim, lim);
+    }
+  }
+}
+
+void World::step() {
+  for (int s = 0; s < substeps_; ++s) {
+    apply_pd();
+    mj_step(m_, d_);
+  }
+}
+
+LinkFrames World::link_frames() const {
+  const Skeleton& sk = ch_.skeleton;
+  LinkFrames out;
+  out.joint_pos.resize(sk.joints.size());
+  out.joint_rot.resize(sk.joints.size());
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int b = body_[j];
+    out.joint_pos[j] = Vec3(d_->xpos[3 * b], d_->xpos[3 * b + 1], d_->xpos[3 * b + 2]);
+    out.joint_rot[j] = Quat(d_->xquat[4 * b], d_->xquat[4 * b + 1], d_->xquat[4 * b + 2], d_->xquat[4 * b + 3]);
+  }
+  out.site_pos.resize(sk.sites.size());
+  for (std::size_t s = 0; s < sk.sites.size(); ++s) {
+    const auto j = static_cast<std::size_t>(sk.sites[s].joint);
+    out.site_pos[s] = out.joint_pos[j] + out.joint_rot[j] * sk.sites[s].offset;
+  }
+  return out;
+}
+
+Vec3 World::centre_of_mass() const {
+  const int root = body_[0];
+  return Vec3(d_->subtree_com[3 * root], d_->subtree_com[3 * root + 1], d_->subtree_com[3 * root + 2]);
+}
+
+std::vector<bool> World::ground_contacts() const {
+  std::vector<bool> touching(ch_.skeleton.joints.size(), false);
+  for (int c = 0; c < d_->ncon; ++c) {
+    const mjContact& con = d_->contact[c];
+    const int b1 = m_->geom_bodyid[con.geom1], b2 = m_->geom_bodyid[con.geom2];
+    for (std::size_t j = 0; j < body_.size(); ++j) {
+      // Contacts between the character and anything that is not the character.
+      if ((b1 == body_[j] && b2 == 0) || (b2 == body_[j] && b1 == 0)) touching[j] = true;
+    }
+  }
+  return touching;
+}
+
+}  // namespace mimic

@@ -1,0 +1,67 @@
+#pragma once
+// A simulated character in MuJoCo: owns mjModel/mjData, steps physics at physics_hz under PD
+// servos updated at control_hz, and moves between mimic poses and MuJoCo state.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "motion/kinematics.hpp"
+#include "sim/character_model.hpp"
+
+struct mjModel_;
+struct mjData_;
+
+namespace mimic {
+
+struct SimConfig {
+  double physics_hz = 600.0;
+  double control_hz = 30.0;
+};
+
+class World {
+ public:
+  // Builds the MJCF of `ch` and compiles it; throws Error with MuJoCo's message on failure.
+  World(const CharacterModel& ch, const SimConfig& cfg = {});
+  // Compiles a given MJCF text for `ch`'s skeleton (joint names must match).
+  World(const CharacterModel& ch, const std::string& mjcf, const SimConfig& cfg);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const CharacterModel& character() const { return ch_; }
+  const SimConfig& config() const { return cfg_; }
+  int substeps() const { return substeps_; }
+  double time() const;
+
+  // Sets the character's full state: a pose and its velocities (zero when omitted).
+  void set_state(const Pose& pose, const PoseVelocity* vel = nullptr);
+  // The current pose (root position and rotation, joint rotations).
+  Pose pose() const;
+  // PD targets: one rotation per joint (root ignored). Torques are clamped to torque limits.
+  void set_pd_targets(const Pose& targets);
+  // Advances one control step (physics_hz / control_hz physics steps).
+  void step();
+
+  // World frames of every joint (= MuJoCo body frames) and the skeleton's sites.
+  LinkFrames link_frames() const;
+  Vec3 centre_of_mass() const;
+  // Per joint: does its body touch the floor (or another non-character geom)?
+  std::vector<bool> ground_contacts() const;
+
+  mjModel_* model() const { return m_; }
+  mjData_* data() const { return d_; }
+
+ private:
+  void init(const std::string& mjcf);
+  void apply_pd();
+
+  CharacterModel ch_;
+  SimConfig cfg_;
+  int substeps_ = 1;
+  mjModel_* m_ = nullptr;
+  mjData_* d_ = nullptr;
+  std::vector<int> body_, qpos_, dof_;  // per skeleton joint; -1 for none
+  std::vector<Quat> target_;
+};
+
+}  // namespace mimic

@@ -1,0 +1,165 @@
+// The simulated DeepMimic humanoid on MuJoCo: generated model, state round trip, standing.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+
+#include "motion/deepmimic.hpp"
+#include "sim/character_model.hpp"
+#include "sim/world.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+CharacterModel humanoid() {
+  const auto dir = test::shared_data() / "deepmimic/characters";
+  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+}
+
+// Lowest and highest z over a set of the model's geoms (world frame, exact for each shape).
+std::pair<double, double> geom_z_range(const World& w, const std::vector<std::string>& only = {}) {
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  double lo = 1e9, hi = -1e9;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] == 0) continue;  // the floor
+    const std::string name = mj_id2name(m, mjOBJ_GEOM, g) ? mj_id2name(m, mjOBJ_GEOM, g) : "";
+    if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
+    const double* size = m->geom_size + 3 * g;
+    const double* R = d->geom_xmat + 9 * g;  // row-major; R[6..8] is the world z row
+    const double z = d->geom_xpos[3 * g + 2];
+    double h = 0;
+    switch (m->geom_type[g]) {
+      case mjGEOM_SPHERE: h = size[0]; break;
+      case mjGEOM_CAPSULE: h = size[0] + size[1] * std::abs(R[8]); break;
+      case mjGEOM_BOX: h = size[0] * std::abs(R[6]) + size[1] * std::abs(R[7]) + size[2] * std::abs(R[8]); break;
+      default: h = m->geom_rbound[g];
+    }
+    lo = std::min(lo, z - h);
+    hi = std::max(hi, z + h);
+  }
+  return {lo, hi};
+}
+
+Clip walk_clip(const CharacterModel& ch) {
+  return load_deepmimic_motion(test::shared_data() / "deepmimic/motions/humanoid3d_walk.txt", ch.skeleton);
+}
+
+}  // namespace
+
+TEST(SimCharacter, MassAndStandingHeightMatchTheFile) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", p);
+  const CharacterModel ch = humanoid();
+  World w(ch);
+  EXPECT_NEAR(mj_getTotalmass(w.model()), 45.0, 0.45);  // the file's masses sum to 45 kg
+  EXPECT_NEAR(ch.total_mass(), 45.0, 1e-9);
+  w.set_state(rest_pose(ch.skeleton, Vec3(0, 0, 1)));
+  const auto [lo, hi] = geom_z_range(w);
+  EXPECT_NEAR(hi - lo, ch.rest_height(), 0.01 * ch.rest_height());
+  EXPECT_NEAR(hi - lo, 1.62, 0.0162);  // DeepMimic's humanoid is 1.62 m tall
+  EXPECT_EQ(w.model()->nv, 34);        // 34 degrees of freedom
+  EXPECT_EQ(w.model()->nbody - 1, 15);
+}
+
+TEST(SimCharacter, MjcfIsWrittenAndNamesEveryJoint) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", p);
+  const std::string xml = build_mjcf(humanoid());
+  for (const char* s : {"<freejoint name=\"root\"/>", "name=\"right_knee\" type=\"hinge\"", "name=\"chest\" type=\"ball\" damping=\"100\""})
+    EXPECT_NE(xml.find(s), std::string::npos) << s;
+}
+
+TEST(SimWorld, SetStateReproducesClipKinematicsWithin1mm) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const CharacterModel ch = humanoid();
+  const Clip walk = walk_clip(ch);
+  World w(ch);
+  for (int f = 0; f < walk.num_frames(); f += 5) {
+    const Pose& pose = walk.frames[static_cast<std::size_t>(f)];
+    w.set_state(pose);
+    const LinkFrames sim = w.link_frames();
+    const LinkFrames kin = forward_kinematics(ch.skeleton, pose);
+    for (std::size_t j = 0; j < sim.joint_pos.size(); ++j) {
+      EXPECT_LT((sim.joint_pos[j] - kin.joint_pos[j]).norm(), 1e-3) << ch.skeleton.joints[j].name;
+      EXPECT_LT(rotation_distance(sim.joint_rot[j], kin.joint_rot[j]), 1e-6) << ch.skeleton.joints[j].name;
+    }
+  }
+  // Mid-frame: state from the interpolated pose matches the interpolated kinematics.
+  const Pose mid = walk.sample(0.5 / walk.fps);
+  w.set_state(mid);
+  EXPECT_LT((w.link_frames().joint_pos[5] - forward_kinematics(ch.skeleton, mid).joint_pos[5]).norm(), 1e-3);
+  // Pose read back equals the pose set.
+  w.set_state(walk.frames[7]);
+  const Pose back = w.pose();
+  for (std::size_t j = 0; j < back.rot.size(); ++j) EXPECT_LT(rotation_distance(back.rot[j], walk.frames[7].rot[j]), 1e-9);
+}
+
+TEST(SimWorld, KinematicWalkKeepsFeetAtTheGround) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const CharacterModel ch = humanoid();
+  const Clip walk = walk_clip(ch);
+  World w(ch);
+  double lowest = 1e9;
+  for (const Pose& pose : walk.frames) {
+    w.set_state(pose);
+    lowest = std::min(lowest, geom_z_range(w, {"right_ankle", "left_ankle"}).first);
+  }
+  EXPECT_NEAR(lowest, 0.0, 0.03);  // the soles reach the floor, within 3 cm, at their lowest
+}
+
+class SimStand : public ::testing::TestWithParam<double> {};
+
+// Zero actions: PD targets at every joint's rest rotation (upright, arms down). Started at the
+// walk's first pose (one foot on the ground), the humanoid steps into double support and stands.
+TEST_P(SimStand, ZeroActionsFromTheFirstPoseStandFor2Seconds) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const CharacterModel ch = humanoid();
+  const Clip walk = walk_clip(ch);
+  World w(ch, SimConfig{GetParam(), 30.0});
+  w.set_state(walk.frames[0]);
+  w.set_pd_targets(rest_pose(ch.skeleton));
+  double lowest_root = 1e9, max_speed = 0;
+  for (int k = 0; k < 60; ++k) {  // 2 s of control steps
+    w.step();
+    lowest_root = std::min(lowest_root, w.pose().root_pos.z());
+    for (int i = 0; i < w.model()->nv; ++i) max_speed = std::max(max_speed, std::abs(w.data()->qvel[i]));
+  }
+  EXPECT_NEAR(w.time(), 2.0, 1e-9);
+  EXPECT_GT(lowest_root, 0.8) << "fell";  // standing root height is 0.88 m
+  EXPECT_LT(max_speed, 10.0) << "PD servos unstable";
+  const std::vector<bool> contacts = w.ground_contacts();
+  for (std::size_t j = 0; j < contacts.size(); ++j) {
+    const std::string& n = ch.skeleton.joints[j].name;
+    EXPECT_EQ(contacts[j], n == "right_ankle" || n == "left_ankle") << n;  // on its feet only
+  }
+}
+
+// Targets at the walk's first pose: a statue in mid-stride topples (physics), but the servos
+// hold every joint at its target throughout, without instability.
+TEST_P(SimStand, ServosHoldAMidStridePoseStably) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const CharacterModel ch = humanoid();
+  const Clip walk = walk_clip(ch);
+  World w(ch, SimConfig{GetParam(), 30.0});
+  w.set_state(walk.frames[0]);
+  double worst = 0, max_speed = 0;
+  for (int k = 0; k < 60; ++k) {
+    w.step();
+    const Pose now = w.pose();
+    if (k < 30)  // the first second, before the body meets the floor
+      for (std::size_t j = 1; j < now.rot.size(); ++j) worst = std::max(worst, rotation_distance(now.rot[j], walk.frames[0].rot[j]));
+    for (int i = 0; i < w.model()->nv; ++i) max_speed = std::max(max_speed, std::abs(w.data()->qvel[i]));
+  }
+  EXPECT_LT(worst, 0.15);  // ~6 deg measured: the stance hip carries the body against kp = 500
+  EXPECT_LT(max_speed, 20.0);  // the fall's impact included
+  EXPECT_TRUE(w.pose().root_pos.allFinite());
+}
+
+INSTANTIATE_TEST_SUITE_P(Rates, SimStand, ::testing::Values(600.0, 1200.0));
