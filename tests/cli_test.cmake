@@ -30,7 +30,7 @@ function(expect_in text what)
 endfunction()
 
 # The README's main job on its embedded default.
-run_ok(demo -o ${OUT}/demo)
+run_ok(demo -o ${OUT}/demo --no-video)
 expect_in("${LAST_OUT}" "jumping_jack")
 foreach(f jumping_jack.mclip jumping_jack.svg summary.txt)
   if(NOT EXISTS ${OUT}/demo/${f})

@@ -3,17 +3,23 @@
 #include <CLI/CLI.hpp>
 
 #include "motion/clip_io.hpp"
+#include "sim/character_model.hpp"
 
 namespace mimic::app {
 
 void add_motion_commands(CLI::App& app);
 void add_demo_command(CLI::App& app);
+void add_render_commands(CLI::App& app);
 
 // Options every command that reads a motion file accepts.
 void add_load_options(CLI::App& cmd, LoadOptions& opts);
 
 // A human-readable summary of a clip (several lines).
 std::string clip_summary(const Clip& clip);
+
+// The character to play a clip on: --character (DeepMimic), else the DeepMimic character named
+// like the clip, else a simple body built on the clip's own skeleton. Throws if they do not fit.
+CharacterModel character_for(const Clip& clip, const std::filesystem::path& input, const LoadOptions& load);
 
 // Writes a clip to .mclip, DeepMimic .txt or a .svg picture, by the extension of `out`.
 void write_motion(const Clip& clip, const std::filesystem::path& out);

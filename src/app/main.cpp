@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "mimic 0.1.0");
   mimic::app::add_motion_commands(app);
+  mimic::app::add_render_commands(app);
   mimic::app::add_demo_command(app);
   try {
     app.parse(argc, argv);

@@ -32,6 +32,33 @@ CharacterModel CharacterModel::from_deepmimic(const std::filesystem::path& chara
   return ch;
 }
 
+CharacterModel CharacterModel::from_skeleton(const Skeleton& sk, const std::string& name) {
+  sk.validate();
+  CharacterModel ch;
+  ch.name = name;
+  ch.skeleton = sk;
+  const auto children = sk.children();
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    // The bone: towards the first child, else the first site on this joint, else a short stub.
+    Vec3 tip(0, 0, -0.1);
+    if (!children[j].empty()) tip = sk.joints[static_cast<std::size_t>(children[j][0])].offset;
+    else for (const Site& site : sk.sites) if (site.joint == static_cast<int>(j)) { tip = site.offset; break; }
+    const double length = std::max(tip.norm(), 0.02);
+    BodyDef b;
+    b.name = sk.joints[j].name;
+    b.shape = "capsule";
+    b.pos = tip / 2;
+    b.rot = tip.norm() > 1e-9 ? Quat::FromTwoVectors(Vec3::UnitZ(), tip) : Quat::Identity();
+    b.size = Vec3(0.08, 0.08, length);
+    b.mass = std::max(0.2, 1000.0 * kPi * 0.03 * 0.03 * length * 3.0);
+    b.color = Eigen::Vector4d(0.47, 0.55, 0.69, 1.0);
+    ch.bodies.push_back(b);
+  }
+  ch.gains.resize(sk.joints.size());
+  for (std::size_t j = 1; j < sk.joints.size(); ++j) ch.gains[j] = PdGain{300.0, 30.0};
+  return ch;
+}
+
 double CharacterModel::total_mass() const {
   double m = 0;
   for (const BodyDef& b : bodies) m += b.mass;
@@ -99,14 +126,15 @@ std::string build_mjcf(const CharacterModel& ch, const MjcfOptions& opts) {
       "  <compiler angle=\"radian\" inertiafromgeom=\"true\"/>\n"
       "  <option timestep=\"{}\" gravity=\"0 0 -9.81\" integrator=\"Euler\"/>\n"
       "  <size njmax=\"1000\" nconmax=\"200\"/>\n"
-      "  <visual><global offwidth=\"1280\" offheight=\"720\"/><quality shadowsize=\"4096\"/></visual>\n"
+      "  <visual><global offwidth=\"1280\" offheight=\"720\"/><quality shadowsize=\"2048\"/></visual>\n"
       "  <default>\n"
       "    <joint armature=\"{}\" limited=\"false\"/>\n"
       "    <geom contype=\"2\" conaffinity=\"1\" condim=\"3\" friction=\"{} 0.005 0.0001\"/>\n"
       "  </default>\n"
       "  <asset>\n"
       "    <texture name=\"grid\" type=\"2d\" builtin=\"checker\" rgb1=\".82 .84 .86\" rgb2=\".72 .74 .76\" width=\"512\" height=\"512\"/>\n"
-      "    <material name=\"grid\" texture=\"grid\" texrepeat=\"1 1\" texuniform=\"true\" reflectance=\".1\"/>\n"
+      "    <material name=\"grid\" texture=\"grid\" texrepeat=\"1 1\" texuniform=\"true\" reflectance=\".05\"/>\n"
+      "    <texture name=\"sky\" type=\"skybox\" builtin=\"gradient\" rgb1=\".55 .7 .85\" rgb2=\".1 .15 .2\" width=\"256\" height=\"256\"/>\n"
       "  </asset>\n"
       "  <worldbody>\n"
       "    <light name=\"sun\" directional=\"true\" pos=\"0 0 5\" dir=\"-0.3 -0.3 -1\" diffuse=\".8 .8 .8\"/>\n",

@@ -1,0 +1,67 @@
+// mimic render CLIP -o out.mp4; mimic character build CHARACTER -o model.xml
+#include <spdlog/spdlog.h>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "motion/deepmimic.hpp"
+#include "render/clip_video.hpp"
+
+namespace mimic::app {
+
+CharacterModel character_for(const Clip& clip, const std::filesystem::path& input, const LoadOptions& load) {
+  std::filesystem::path ch_path = load.character;
+  if (ch_path.empty() && input.extension() == ".txt") ch_path = guess_deepmimic_character(input);
+  if (ch_path.empty()) return CharacterModel::from_skeleton(clip.skeleton, clip.name);
+  std::filesystem::path ctrl = ch_path.parent_path() / (ch_path.stem().string() + "_ctrl.txt");
+  CharacterModel ch = CharacterModel::from_deepmimic(ch_path, std::filesystem::exists(ctrl) ? ctrl : std::filesystem::path{});
+  for (int j = 0; j < ch.skeleton.num_joints(); ++j) {
+    if (j >= clip.skeleton.num_joints() || clip.skeleton.joints[static_cast<std::size_t>(j)].name != ch.skeleton.joints[static_cast<std::size_t>(j)].name)
+      throw Error(input.string() + ": the clip's skeleton does not fit the character " + ch_path.string() + " (joint " +
+                  std::to_string(j) + " '" + ch.skeleton.joints[static_cast<std::size_t>(j)].name + "' differs or is missing)");
+  }
+  if (clip.skeleton.num_joints() != ch.skeleton.num_joints())
+    throw Error(input.string() + ": the clip has more joints than the character " + ch_path.string());
+  return ch;
+}
+
+void add_render_commands(CLI::App& app) {
+  struct Args {
+    std::filesystem::path input, output, controller;
+    LoadOptions load;
+    ClipVideoOptions video;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* render = app.add_subcommand("render", "video (.mp4 or .gif) of a clip played on a simulated character");
+  render->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
+  render->add_option("-o,--output", args->output, "output .mp4 or .gif")->required();
+  render->add_flag("--ghost", args->video.ghost, "also draw the clip as a translucent ghost beside the character");
+  render->add_option("--seconds", args->video.seconds, "length (default: the clip's duration)");
+  render->add_option("--width", args->video.width, "pixels")->capture_default_str()->check(CLI::Range(16, 1280));
+  render->add_option("--height", args->video.height, "pixels")->capture_default_str()->check(CLI::Range(16, 720));
+  add_load_options(*render, args->load);
+  render->callback([args] {
+    const Clip clip = load_motion(args->input, args->load);
+    const CharacterModel ch = character_for(clip, args->input, args->load);
+    const int frames = render_clip_video(ch, clip, args->output, args->video);
+    spdlog::info("wrote {} ({} frames at {} fps, character '{}')", args->output.string(), frames, args->video.fps, ch.name);
+  });
+
+  CLI::App* character = app.add_subcommand("character", "simulated characters");
+  character->require_subcommand(1);
+  CLI::App* build = character->add_subcommand("build", "write the MuJoCo model (MJCF) of a character or of a clip's skeleton");
+  build->add_option("source", args->input, "DeepMimic character file, or any motion file (its skeleton)")->required()->check(CLI::ExistingFile);
+  build->add_option("--ctrl", args->controller, "DeepMimic PD-controller file (gains)");
+  build->add_option("-o,--output", args->output, "output .xml")->required();
+  build->callback([args] {
+    CharacterModel ch;
+    const bool is_character = args->input.extension() == ".txt" && read_text_file(args->input).find("\"Skeleton\"") != std::string::npos;
+    if (is_character) ch = CharacterModel::from_deepmimic(args->input, args->controller);
+    else ch = CharacterModel::from_skeleton(load_motion(args->input, args->load).skeleton, args->input.stem().string());
+    write_file_atomic(args->output, build_mjcf(ch));
+    spdlog::info("wrote {}: {} bodies, {:.2f} kg, {:.3f} m tall at rest", args->output.string(), ch.bodies.size(), ch.total_mass(), ch.rest_height());
+  });
+  add_load_options(*build, args->load);
+}
+
+}  // namespace mimic::app

@@ -1,0 +1,23 @@
+#pragma once
+// Kinematic playback of a clip on a simulated character, rendered to MP4/GIF: the camera follows
+// the character; an optional translucent ghost replays the clip beside it.
+#include <filesystem>
+
+#include "render/offscreen.hpp"
+#include "sim/character_model.hpp"
+
+namespace mimic {
+
+struct ClipVideoOptions {
+  int width = 640, height = 480;
+  double fps = 30.0;
+  double seconds = 0.0;                // 0: the clip's duration (wrap clips: one cycle)
+  bool ghost = false;
+  Vec3 ghost_offset = Vec3(0, 1.0, 0);  // ghost position relative to the character
+  CameraSpec camera;                    // lookat is relative to the root's ground point
+};
+
+// Returns the number of frames written. Throws Error if no GL context or ffmpeg is available.
+int render_clip_video(const CharacterModel& ch, const Clip& clip, const std::filesystem::path& out, const ClipVideoOptions& opts = {});
+
+}  // namespace mimic
