@@ -18,8 +18,8 @@ packages=(
   libtorch-dev libopenblas0-pthread libopenblas-dev
   # many machines
   libopenmpi-dev openmpi-bin
-  # pictures and video: headless GL for MuJoCo's renderer, ffmpeg for MP4/GIF
-  libosmesa6-dev libegl-dev libgl-dev libglfw3-dev ffmpeg
+  # pictures and video: headless EGL with Mesa software rendering (llvmpipe) for MuJoCo's renderer, ffmpeg for MP4/GIF
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libosmesa6-dev libglfw3-dev ffmpeg
 )
 
 missing=()
