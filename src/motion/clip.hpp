@@ -19,6 +19,11 @@ struct Pose {
 };
 
 enum class LoopMode { None, Wrap };
+
+// Importers refuse clips of more than this many joint rotations (frames x joints, ~1 GB): real
+// capture is far below (10 min at 120 Hz of 31 joints is 2.2 M), and a tiny malformed file
+// cannot make an importer allocate without bound.
+constexpr long kMaxClipRotations = 1L << 25;
 const char* to_string(LoopMode m);
 
 struct Clip {
