@@ -201,3 +201,24 @@ TEST(NativeClip, RoundTripsImportedClipsWithin1e6) {
     EXPECT_LT(worst, 1e-6) << a.name;
   }
 }
+
+// CMU's own ASF/AMC files are not in ../shared; a user who has them points $MIMIC_CMU_ASF_AMC
+// at a directory of them (e.g. subjects/07/ with 07.asf, 07_01.amc, ...).
+TEST(AsfAmcImport, UserCmuFilesLoadWhenPresent) {
+  const char* dir = std::getenv("MIMIC_CMU_ASF_AMC");
+  if (!dir || !std::filesystem::is_directory(dir)) GTEST_SKIP() << "set MIMIC_CMU_ASF_AMC to a directory of CMU .asf/.amc files to run this";
+  int clips = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".amc") continue;
+    const Clip clip = load_motion(entry.path());
+    clip.validate();
+    EXPECT_GT(clip.num_frames(), 0) << entry.path();
+    // Standing subjects: the head is well above the feet in the first frame.
+    const LinkFrames fk = forward_kinematics(clip.skeleton, clip.frames[0]);
+    double lo = 1e9, hi = -1e9;
+    for (const Vec3& p : fk.joint_pos) lo = std::min(lo, p.z()), hi = std::max(hi, p.z());
+    EXPECT_GT(hi - lo, 1.0) << entry.path();
+    ++clips;
+  }
+  EXPECT_GT(clips, 0) << "no .amc files in " << dir;
+}
