@@ -37,7 +37,7 @@ struct OffscreenRenderer::Impl {
       eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       eglDestroyContext(display, context);
     }
-    if (display != EGL_NO_DISPLAY) eglTerminate(display);
+    // No eglTerminate: the display is shared by every renderer in the process.
   }
 };
 
