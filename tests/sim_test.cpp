@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "motion/deepmimic.hpp"
 #include "sim/character_model.hpp"
 #include "sim/world.hpp"
@@ -163,3 +164,23 @@ TEST_P(SimStand, ServosHoldAMidStridePoseStably) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, SimStand, ::testing::Values(600.0, 1200.0));
+
+TEST(SimWorld, BadModelsAndRatesAreClearErrors) {
+  const Clip one = [] {
+    Clip c;
+    c.skeleton.joints.push_back(Joint{"root", -1, JointType::Free, Vec3::Zero(), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+    return c;
+  }();
+  const CharacterModel ch = CharacterModel::from_skeleton(one.skeleton, "one_body");
+  try {
+    World w(ch, "<mujoco><worldbody><body name='root'><geom type='sphere'/></body></worldbody>", SimConfig{});
+    FAIL() << "MuJoCo accepted a broken model";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("MuJoCo rejected the model of 'one_body'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(World(ch, SimConfig{600.0, 35.0}), Error);  // 600 / 35 is not whole
+  World w(ch);
+  Pose wrong;
+  wrong.rot.assign(3, Quat::Identity());
+  EXPECT_THROW(w.set_state(wrong), Error);
+}
