@@ -127,6 +127,7 @@ class BvhParser {
     sc_.expect_word("MOTION");
     sc_.expect_word("Frames:");
     const long frames = sc_.expect_int("the frame count");
+    const int frames_line = sc_.line();
     if (frames < 1 || frames > kMaxFrames) sc_.fail("frame count must be 1.." + std::to_string(kMaxFrames));
     sc_.expect_word("Frame");
     sc_.expect_word("Time:");
@@ -141,10 +142,11 @@ class BvhParser {
     const Quat basis_inv = basis_.conjugate();
     std::vector<Vec3> first_pos(nj, Vec3::Zero());  // non-root position channels, frame 0
     for (long f = 0; f < frames; ++f) {
-      if (sc_.at_end()) sc_.fail("file ends after " + std::to_string(f) + " frames, 'Frames:' says " + std::to_string(frames));
+      if (sc_.at_end())
+        sc_.fail_at(frames_line, "file ends after " + std::to_string(f) + " frames, 'Frames:' says " + std::to_string(frames));
       const int line = sc_.line();
       for (int c = 0; c < num_channels_; ++c) {
-        if (sc_.line() != line || sc_.at_end())
+        if (sc_.at_end() || sc_.line() != line)  // at_end() first: it skips to the next token's line
           sc_.fail_at(line, "frame " + std::to_string(f) + " has " + std::to_string(c) + " values, expected " +
                                 std::to_string(num_channels_));
         row[static_cast<std::size_t>(c)] = sc_.expect_double("a channel value");

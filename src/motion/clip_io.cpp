@@ -16,6 +16,13 @@ namespace {
 
 constexpr int kFormatVersion = 1;
 
+// yaml-cpp's messages may quote a raw byte of the input; keep error messages printable.
+std::string printable_message(std::string m) {
+  for (char& c : m)
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  return m;
+}
+
 void put(std::string& out, double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.10g", v);
@@ -155,7 +162,7 @@ Clip parse_clip(std::string_view text, const std::string& source) {
   try {
     h = YAML::Load(std::string(text.substr(0, sep)));
   } catch (const YAML::Exception& e) {
-    throw ParseError(source, e.mark.line + 1, "header is not valid YAML: " + e.msg);
+    throw ParseError(source, e.mark.line + 1, "header is not valid YAML: " + printable_message(e.msg));
   }
   if (!h.IsMap()) throw ParseError(source, 1, "header is not a YAML mapping");
   if (hr.text(hr.need(h, "format", "header"), "format") != "mimic-clip")
@@ -184,18 +191,25 @@ Clip parse_clip(std::string_view text, const std::string& source) {
     if (!jn.IsMap()) hr.fail(jn, where + ": expected a mapping");
     Joint j;
     j.name = hr.text(hr.need(jn, "name", where), where + " name");
+    if (sk.find(j.name) >= 0) hr.fail(jn["name"], where + ": duplicate joint name '" + printable_token(j.name) + "'");
     const long parent = hr.integer(hr.need(jn, "parent", where), where + " parent");
     if (parent < -1 || parent >= static_cast<long>(i)) hr.fail(jn, where + ": parent must be -1 or an earlier joint");
+    if ((i == 0) != (parent == -1)) hr.fail(jn, where + ": only joint 0, the root, has parent -1");
     j.parent = static_cast<int>(parent);
     if (!parse_joint_type(hr.text(hr.need(jn, "type", where), where + " type"), j.type))
       hr.fail(jn["type"], where + ": type must be free, spherical, revolute or fixed");
+    if ((i == 0) != (j.type == JointType::Free))
+      hr.fail(jn["type"], where + (i == 0 ? ": the root must be a free joint" : ": only the root (joint 0) may be a free joint"));
     if (jn["offset"].IsDefined()) j.offset = hr.vec<3>(jn["offset"], where + " offset");
     if (jn["rest"].IsDefined()) {
       const Eigen::Vector4d r = hr.vec<4>(jn["rest"], where + " rest");
       j.rest = Quat(r[0], r[1], r[2], r[3]);
       if (std::abs(j.rest.norm() - 1.0) > 1e-6) hr.fail(jn["rest"], where + ": rest is not a unit quaternion");
     }
-    if (j.type == JointType::Revolute) j.axis = hr.vec<3>(hr.need(jn, "axis", where), where + " axis");
+    if (j.type == JointType::Revolute) {
+      j.axis = hr.vec<3>(hr.need(jn, "axis", where), where + " axis");
+      if (std::abs(j.axis.norm() - 1.0) > 1e-6) hr.fail(jn["axis"], where + ": axis is not a unit vector");
+    }
     if (const YAML::Node lim = jn["limits"]; lim.IsDefined()) {
       if (!lim.IsSequence()) hr.fail(lim, where + ": limits must be a list of [low, high]");
       for (std::size_t k = 0; k < lim.size(); ++k) {
@@ -204,8 +218,15 @@ Clip parse_clip(std::string_view text, const std::string& source) {
         j.limits.emplace_back(lh[0], lh[1]);
       }
     }
-    if (jn["torque_limit"].IsDefined()) j.torque_limit = hr.number(jn["torque_limit"], where + " torque_limit");
-    if (jn["end_effector"].IsDefined()) j.end_effector = hr.text(jn["end_effector"], where) == "true";
+    if (jn["torque_limit"].IsDefined()) {
+      j.torque_limit = hr.number(jn["torque_limit"], where + " torque_limit");
+      if (j.torque_limit < 0) hr.fail(jn["torque_limit"], where + ": torque_limit is negative");
+    }
+    if (jn["end_effector"].IsDefined()) {
+      const std::string ee = hr.text(jn["end_effector"], where + " end_effector");
+      if (ee != "true" && ee != "false") hr.fail(jn["end_effector"], where + ": end_effector must be true or false");
+      j.end_effector = ee == "true";
+    }
     sk.joints.push_back(std::move(j));
   }
   if (const YAML::Node sites = h["sites"]; sites.IsDefined()) {
@@ -228,20 +249,22 @@ Clip parse_clip(std::string_view text, const std::string& source) {
     throw ParseError(source, 0, e.what());
   }
 
-  // Frame rows.
-  TextScanner sc(text.substr(sep), source);
+  // Frame rows, scanned with the header replaced by empty lines so that line numbers are the file's.
+  const std::string rows = std::string(static_cast<std::size_t>(header_lines - 1), '\n') + std::string(text.substr(sep));
+  TextScanner sc(rows, source);
+  const int frames_line = h["frames"].Mark().line + 1;
   sc.expect_word("---");
   const std::size_t nj = sk.joints.size();
   const int width = 3 + 4 * static_cast<int>(nj);
   for (long f = 0; f < nframes; ++f) {
-    if (sc.at_end()) sc.fail("file ends after " + std::to_string(f) + " frames, the header says " + std::to_string(nframes));
+    if (sc.at_end()) sc.fail_at(frames_line, "file ends after " + std::to_string(f) + " frames, the header says " + std::to_string(nframes));
     const int line = sc.line();
     double v[4];
     Pose p;
     p.rot.resize(nj);
     auto value = [&](int idx) {
       if (sc.at_end() || sc.line() != line)
-        sc.fail_at(line + header_lines - 1, "frame " + std::to_string(f) + " has " + std::to_string(idx) + " values, expected " + std::to_string(width));
+        sc.fail_at(line, "frame " + std::to_string(f) + " has " + std::to_string(idx) + " values, expected " + std::to_string(width));
       return sc.expect_double("a frame value");
     };
     int idx = 0;
@@ -250,14 +273,14 @@ Clip parse_clip(std::string_view text, const std::string& source) {
       for (double& x : v) x = value(idx++);
       Quat q(v[0], v[1], v[2], v[3]);
       if (std::abs(q.norm() - 1.0) > 1e-3)
-        sc.fail_at(line + header_lines - 1, "frame " + std::to_string(f) + ": rotation of joint '" + sk.joints[j].name + "' is not a unit quaternion");
+        sc.fail_at(line, "frame " + std::to_string(f) + ": rotation of joint '" + sk.joints[j].name + "' is not a unit quaternion");
       p.rot[j] = q.normalized();
     }
     if (!sc.at_end() && sc.line() == line)
-      sc.fail_at(line + header_lines - 1, "frame " + std::to_string(f) + " has more than " + std::to_string(width) + " values");
+      sc.fail_at(line, "frame " + std::to_string(f) + " has more than " + std::to_string(width) + " values");
     clip.frames.push_back(std::move(p));
   }
-  if (!sc.at_end()) sc.fail_at(sc.line() + header_lines - 1, "more frame rows than the header's frames: " + std::to_string(nframes));
+  if (!sc.at_end()) sc.fail("more frame rows than the header's frames: " + std::to_string(nframes));
   return clip;
 }
 

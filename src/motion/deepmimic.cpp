@@ -12,6 +12,13 @@
 namespace mimic {
 namespace {
 
+// yaml-cpp's messages may quote a raw byte of the input; keep error messages printable.
+std::string printable_message(std::string m) {
+  for (char& c : m)
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  return m;
+}
+
 // JSON access with errors that name the file, the line and the key.
 class JsonReader {
  public:
@@ -23,7 +30,7 @@ class JsonReader {
       if (!root.IsMap()) fail(root, "expected a JSON object at the top level");
       return root;
     } catch (const YAML::Exception& e) {
-      throw ParseError(source_, e.mark.line + 1, "not valid JSON: " + e.msg);
+      throw ParseError(source_, e.mark.line + 1, "not valid JSON: " + printable_message(e.msg));
     }
   }
 
@@ -199,7 +206,9 @@ DeepMimicCharacter parse_deepmimic_character(std::string_view text, const std::s
       else if (b.shape == "capsule" || b.shape == "cylinder") b.size = Vec3(p.x(), p.x(), p.y());
       else if (b.shape == "sphere") b.size = Vec3::Constant(p.x());
       else js.fail(bn, where + ": unsupported \"Shape\" '" + b.shape + "' (box, capsule, cylinder, sphere)");
-      b.collision_group = static_cast<int>(js.number_or(bn, "ColGroup", where, 0));
+      const double group = js.number_or(bn, "ColGroup", where, 0);
+      if (group != std::floor(group) || std::abs(group) > 1e9) js.fail(bn["ColGroup"], where + " \"ColGroup\": expected an integer");
+      b.collision_group = static_cast<int>(group);
       b.fall_contact = js.number_or(bn, "EnableFallContact", where, 0) != 0;
       b.color = Eigen::Vector4d(js.number_or(bn, "ColorR", where, 0.5), js.number_or(bn, "ColorG", where, 0.5),
                                 js.number_or(bn, "ColorB", where, 0.5), js.number_or(bn, "ColorA", where, 1.0));
