@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "motion/bvh.hpp"
 #include "motion/clip_io.hpp"
 #include "motion/deepmimic.hpp"
@@ -221,4 +222,33 @@ TEST(AsfAmcImport, UserCmuFilesLoadWhenPresent) {
     ++clips;
   }
   EXPECT_GT(clips, 0) << "no .amc files in " << dir;
+}
+
+TEST(NativeClip, NamesWithControlCharactersRoundTrip) {
+  Clip c;
+  c.name = "a\n---\nb\t\"q\"\\";
+  c.skeleton.joints.push_back(Joint{"root", -1, JointType::Free, Vec3::Zero(), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+  c.frames.push_back(rest_pose(c.skeleton, Vec3(0, 0, 1)));
+  const Clip back = parse_clip(write_clip(c), "names.mclip");
+  EXPECT_EQ(back.name, c.name);
+  EXPECT_EQ(back.num_frames(), 1);
+}
+
+TEST(NativeClip, HugeFrameCountsAreRefusedBeforeAllocating) {
+  Clip c;
+  c.skeleton.joints.push_back(Joint{"root", -1, JointType::Free, Vec3::Zero(), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+  c.frames.push_back(rest_pose(c.skeleton));
+  std::string text = write_clip(c);
+  text.replace(text.find("frames: 1"), 9, "frames: 9999999");
+  // 9,999,999 frames of one joint would be allowed; of 4,096 joints they exceed the bound.
+  for (int j = 1; j < 4096; ++j) {
+    const std::string line = "  - {name: \"j" + std::to_string(j) + "\", parent: 0, type: fixed}\n";
+    text.insert(text.find("sites:"), line);
+  }
+  try {
+    parse_clip(text, "huge.mclip");
+    FAIL() << "accepted";
+  } catch (const ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("clip too large"), std::string::npos) << e.what();
+  }
 }

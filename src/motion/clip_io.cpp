@@ -38,11 +38,22 @@ std::string vec_yaml(const double* v, int n) {
   return s + "]";
 }
 
+// A YAML double-quoted string: control characters escaped so a name can never break a line
+// (and so never end the header early).
 std::string quote(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", u);
+      out += buf;
+    } else {
+      out += c;
+    }
   }
   return out + "\"";
 }
@@ -248,6 +259,10 @@ Clip parse_clip(std::string_view text, const std::string& source) {
   } catch (const Error& e) {
     throw ParseError(source, 0, e.what());
   }
+
+  if (nframes * static_cast<long>(sk.joints.size()) > kMaxClipRotations)
+    hr.fail(h["frames"], "clip too large: " + std::to_string(nframes) + " frames of " + std::to_string(sk.joints.size()) +
+                             " joints exceed " + std::to_string(kMaxClipRotations) + " joint rotations");
 
   // Frame rows, scanned with the header replaced by empty lines so that line numbers are the file's.
   const std::string rows = std::string(static_cast<std::size_t>(header_lines - 1), '\n') + std::string(text.substr(sep));

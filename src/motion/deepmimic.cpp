@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -98,12 +99,21 @@ Vec3 read_vec(const JsonReader& js, const YAML::Node& obj, const char* prefix, c
   return v;
 }
 
+std::string fmt_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 // Frames of unequal durations (DeepMimic allows them) resampled to the shortest duration:
 // linear root positions, slerp rotations, the end kept exactly.
 Clip resample_irregular(const Clip& in, const std::vector<double>& times, double dt) {
   Clip out = in;
   const double total = times.back();
   const auto intervals = std::max(1L, std::lround(total / dt));
+  if (static_cast<double>(intervals) * static_cast<double>(in.skeleton.joints.size()) > static_cast<double>(kMaxClipRotations))
+    throw Error("frame durations from " + fmt_number(dt) + " s to a total of " + fmt_number(total) +
+                " s would need more than " + std::to_string(kMaxClipRotations) + " joint rotations at a constant rate");
   out.fps = static_cast<double>(intervals) / total;
   out.frames.clear();
   std::size_t seg = 0;
@@ -138,7 +148,7 @@ DeepMimicCharacter parse_deepmimic_character(std::string_view text, const std::s
     const YAML::Node jn = joints[i];
     const std::string where = "joint " + std::to_string(i);
     const double id = js.number(jn, "ID", where);
-    if (id != static_cast<double>(i)) js.fail(jn, where + ": \"ID\" is " + std::to_string(id) + ", joints must be listed in ID order");
+    if (id != static_cast<double>(i)) js.fail(jn, where + ": \"ID\" is " + fmt_number(id) + ", joints must be listed in ID order (0, 1, 2, ...)");
     Joint j;
     j.name = js.string(jn, "Name", where);
     if (j.name.empty()) js.fail(jn, where + ": empty \"Name\"");
@@ -292,7 +302,9 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
       Quat q(row[k], row[k + 1], row[k + 2], row[k + 3]);
       k += 4;
       const double n = q.norm();
-      if (!(n > 0.5 && n < 1.5)) js.fail(fr, where + ": rotation of '" + joint + "' is not a unit quaternion (norm " + std::to_string(n) + ")");
+      // DeepMimic normalises on load, and its own clips rely on that (kick.txt has norms off by
+      // 0.42): accept what DeepMimic accepts, refuse what cannot be a rotation.
+      if (!(n > 0.5 && n < 1.5)) js.fail(fr, where + ": rotation of '" + printable_token(joint) + "' is not a unit quaternion (norm " + std::to_string(n) + ")");
       return rot_to_mimic(q.normalized());
     };
     p.rot[0] = read_quat(sk.joints[0].name);
@@ -305,7 +317,15 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
   }
   clip.fps = 1.0 / min_dt;
   if (times.size() > 1 && std::abs(times.back() - min_dt * static_cast<double>(times.size() - 1)) > 1e-6 * times.back())
-    clip = resample_irregular(clip, times, min_dt);
+  {
+    try {
+      clip = resample_irregular(clip, times, min_dt);
+    } catch (const ParseError&) {
+      throw;
+    } catch (const Error& e) {
+      throw ParseError(source, 0, e.what());
+    }
+  }
   return clip;
 }
 
