@@ -2,16 +2,15 @@
 // the problem, never another exception and never a crash. Each case mutates a small valid file.
 #include <gtest/gtest.h>
 
-#include <set>
-#include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "core/error.hpp"
+#include "malformed_cases.hpp"
 #include "motion/bvh.hpp"
 
 using namespace mimic;
+using namespace mimic::test;
 
 namespace {
 
@@ -46,29 +45,7 @@ const std::string kBase =
     "0 90 0 0 0 0 10 20 30 40\n"                                                   // 24
     "1 90 0 5 0 0 15 25 35 45\n";                                                  // 25
 
-struct Case {
-  const char* what;
-  std::string text;
-  int line;  // expected ParseError::line(); 0 = the error names no line
-  const char* expect_substring;
-};
-
-// `text` with the only occurrence of `from` replaced by `to`; a pattern that is missing or
-// ambiguous throws, which fails the test (the table must mutate the base it says it mutates).
-std::string replace_once(std::string text, std::string_view from, std::string_view to) {
-  const std::size_t at = text.find(from);
-  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos)
-    throw std::logic_error("pattern '" + std::string(from) + "' must occur exactly once");
-  return text.replace(at, from.size(), to);
-}
-
-// The base text up to (not including) the only occurrence of `marker`.
-std::string cut_before(const std::string& text, std::string_view marker) {
-  replace_once(text, marker, "");  // checks that the marker occurs exactly once
-  return text.substr(0, text.find(marker));
-}
-
-std::vector<Case> cases() {
+std::vector<MalformedCase> cases() {
   const std::string& b = kBase;
   return {
       {"empty file", "", 1, "unexpected end of file, expected 'HIERARCHY'"},
@@ -148,7 +125,7 @@ std::vector<Case> cases() {
       {"fewer frames than announced", replace_once(b, "Frames: 2", "Frames: 3"), 22,
        "file ends after 2 frames, 'Frames:' says 3"},
       {"more frames than announced", replace_once(b, "Frames: 2", "Frames: 1"), 25,
-       "unexpected data after the 1 frames 'Frames:' announced"},
+       "unexpected data after the last frame ('Frames: 1')"},
       {"truncated in the middle of a frame", cut_before(b, " 0 0 15 25"), 25, "frame 1 has 4 values, expected 10"},
       {"non-root joint translates over time",
        replace_once(replace_once(replace_once(b, "CHANNELS 1 Xrotation", "CHANNELS 2 Yposition Xrotation"),
@@ -178,27 +155,7 @@ TEST(BvhMalformed, BaseTextParses) {
 }
 
 TEST(BvhMalformed, EveryCaseRaisesParseErrorWithLineAndMessage) {
-  const std::vector<Case> table = cases();
+  const std::vector<MalformedCase> table = cases();
   EXPECT_GE(table.size(), 30u);
-  std::set<std::string> names, texts;
-  for (const Case& c : table) {
-    SCOPED_TRACE(c.what);
-    EXPECT_TRUE(names.insert(c.what).second) << "duplicate case name";
-    EXPECT_TRUE(texts.insert(c.text).second) << "duplicate case text";
-    EXPECT_NE(c.text, kBase);
-    try {
-      parse(c.text);
-      ADD_FAILURE() << "parsed without error";
-    } catch (const ParseError& e) {
-      const std::string msg = e.what();
-      const std::string prefix = kSource + (c.line > 0 ? ":" + std::to_string(c.line) + ": " : ": ");
-      EXPECT_EQ(e.source(), kSource);
-      EXPECT_EQ(e.line(), c.line) << msg;
-      EXPECT_EQ(msg.rfind(prefix, 0), 0u) << msg;
-      EXPECT_NE(msg.find(c.expect_substring), std::string::npos) << msg;
-      for (const char ch : msg) EXPECT_TRUE(ch >= ' ' && ch <= '~') << "unprintable byte in: " << msg;
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not a ParseError: " << e.what();
-    }
-  }
+  expect_parse_errors(table, kBase, kSource, [](const std::string& text) { parse(text); });
 }

@@ -3,16 +3,15 @@
 // text write_clip produces for a small hand-made clip.
 #include <gtest/gtest.h>
 
-#include <set>
-#include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "core/error.hpp"
+#include "malformed_cases.hpp"
 #include "motion/clip_io.hpp"
 
 using namespace mimic;
+using namespace mimic::test;
 
 namespace {
 
@@ -63,29 +62,7 @@ const std::string& base_text() {
   return text;
 }
 
-struct Case {
-  const char* what;
-  std::string text;
-  int line;  // expected ParseError::line(); 0 = the error names no line
-  const char* expect_substring;
-};
-
-// `text` with the only occurrence of `from` replaced by `to`; a pattern that is missing or
-// ambiguous throws, which fails the test (the table must mutate the base it says it mutates).
-std::string replace_once(std::string text, std::string_view from, std::string_view to) {
-  const std::size_t at = text.find(from);
-  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos)
-    throw std::logic_error("pattern '" + std::string(from) + "' must occur exactly once");
-  return text.replace(at, from.size(), to);
-}
-
-// The text up to (not including) the only occurrence of `marker`.
-std::string cut_before(const std::string& text, std::string_view marker) {
-  replace_once(text, marker, "");  // checks that the marker occurs exactly once
-  return text.substr(0, text.find(marker));
-}
-
-std::vector<Case> cases() {
+std::vector<MalformedCase> cases() {
   const std::string& b = base_text();
   const std::string row0 = "0 0 1 1 0 0 0 1 0 0 0 1 0 0 0\n";
   const std::string row1 = "0.125 0 1 1 0 0 0 0.8 0.6 0 0 0.6 0 0.8 0\n";
@@ -183,27 +160,7 @@ TEST(ClipFormatMalformed, BaseTextParses) {
 }
 
 TEST(ClipFormatMalformed, EveryCaseRaisesParseErrorWithLineAndMessage) {
-  const std::vector<Case> table = cases();
+  const std::vector<MalformedCase> table = cases();
   EXPECT_GE(table.size(), 30u);
-  std::set<std::string> names, texts;
-  for (const Case& c : table) {
-    SCOPED_TRACE(c.what);
-    EXPECT_TRUE(names.insert(c.what).second) << "duplicate case name";
-    EXPECT_TRUE(texts.insert(c.text).second) << "duplicate case text";
-    EXPECT_NE(c.text, base_text());
-    try {
-      parse(c.text);
-      ADD_FAILURE() << "parsed without error";
-    } catch (const ParseError& e) {
-      const std::string msg = e.what();
-      const std::string prefix = kSource + (c.line > 0 ? ":" + std::to_string(c.line) + ": " : ": ");
-      EXPECT_EQ(e.source(), kSource);
-      EXPECT_EQ(e.line(), c.line) << msg;
-      EXPECT_EQ(msg.rfind(prefix, 0), 0u) << msg;
-      EXPECT_NE(msg.find(c.expect_substring), std::string::npos) << msg;
-      for (const char ch : msg) EXPECT_TRUE(ch >= ' ' && ch <= '~') << "unprintable byte in: " << msg;
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not a ParseError: " << e.what();
-    }
-  }
+  expect_parse_errors(table, base_text(), kSource, [](const std::string& text) { parse(text); });
 }

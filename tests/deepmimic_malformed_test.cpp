@@ -3,17 +3,16 @@
 // mutates a small valid file.
 #include <gtest/gtest.h>
 
-#include <functional>
-#include <set>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/error.hpp"
+#include "malformed_cases.hpp"
 #include "motion/deepmimic.hpp"
 
 using namespace mimic;
+using namespace mimic::test;
 
 namespace {
 
@@ -53,28 +52,6 @@ const std::string kMotion = R"({
 }
 )";
 
-struct Case {
-  const char* what;
-  std::string text;
-  int line;  // expected ParseError::line(); 0 = the error names no line
-  const char* expect_substring;
-};
-
-// `text` with the only occurrence of `from` replaced by `to`; a pattern that is missing or
-// ambiguous throws, which fails the test (the table must mutate the base it says it mutates).
-std::string replace_once(std::string text, std::string_view from, std::string_view to) {
-  const std::size_t at = text.find(from);
-  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos)
-    throw std::logic_error("pattern '" + std::string(from) + "' must occur exactly once");
-  return text.replace(at, from.size(), to);
-}
-
-// The text up to (not including) the only occurrence of `marker`.
-std::string cut_before(const std::string& text, std::string_view marker) {
-  replace_once(text, marker, "");  // checks that the marker occurs exactly once
-  return text.substr(0, text.find(marker));
-}
-
 // A line of the base text (1-based), whole with its newline, found by a unique fragment.
 std::string line_with(const std::string& text, std::string_view fragment) {
   replace_once(text, fragment, "");
@@ -85,7 +62,7 @@ std::string line_with(const std::string& text, std::string_view fragment) {
 
 const std::string kGarbage("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\xff\xfe{[\"", 21);
 
-std::vector<Case> character_cases() {
+std::vector<MalformedCase> character_cases() {
   const std::string& b = kCharacter;
   return {
       {"empty file", "", 0, "expected a JSON object at the top level"},
@@ -148,7 +125,7 @@ std::vector<Case> character_cases() {
   };
 }
 
-std::vector<Case> motion_cases() {
+std::vector<MalformedCase> motion_cases() {
   const std::string& b = kMotion;
   return {
       {"empty file", "", 0, "expected a JSON object at the top level"},
@@ -186,31 +163,6 @@ std::vector<Case> motion_cases() {
   };
 }
 
-void expect_parse_errors(const std::vector<Case>& table, const std::string& base, const std::string& source,
-                         const std::function<void(const std::string&)>& parse) {
-  std::set<std::string> names, texts;
-  for (const Case& c : table) {
-    SCOPED_TRACE(c.what);
-    EXPECT_TRUE(names.insert(c.what).second) << "duplicate case name";
-    EXPECT_TRUE(texts.insert(c.text).second) << "duplicate case text";
-    EXPECT_NE(c.text, base);
-    try {
-      parse(c.text);
-      ADD_FAILURE() << "parsed without error";
-    } catch (const ParseError& e) {
-      const std::string msg = e.what();
-      const std::string prefix = source + (c.line > 0 ? ":" + std::to_string(c.line) + ": " : ": ");
-      EXPECT_EQ(e.source(), source);
-      EXPECT_EQ(e.line(), c.line) << msg;
-      EXPECT_EQ(msg.rfind(prefix, 0), 0u) << msg;
-      EXPECT_NE(msg.find(c.expect_substring), std::string::npos) << msg;
-      for (const char ch : msg) EXPECT_TRUE(ch >= ' ' && ch <= '~') << "unprintable byte in: " << msg;
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not a ParseError: " << e.what();
-    }
-  }
-}
-
 Skeleton character_skeleton() { return parse_deepmimic_character(kCharacter, kCharacterSource).skeleton; }
 
 }  // namespace
@@ -229,7 +181,7 @@ TEST(DeepMimicMalformed, BaseTextsParse) {
 }
 
 TEST(DeepMimicMalformed, EveryCharacterCaseRaisesParseErrorWithLineAndMessage) {
-  const std::vector<Case> table = character_cases();
+  const std::vector<MalformedCase> table = character_cases();
   EXPECT_GE(table.size(), 15u);
   expect_parse_errors(table, kCharacter, kCharacterSource,
                       [](const std::string& text) { parse_deepmimic_character(text, kCharacterSource); });
@@ -237,7 +189,7 @@ TEST(DeepMimicMalformed, EveryCharacterCaseRaisesParseErrorWithLineAndMessage) {
 
 TEST(DeepMimicMalformed, EveryMotionCaseRaisesParseErrorWithLineAndMessage) {
   const Skeleton sk = character_skeleton();
-  const std::vector<Case> table = motion_cases();
+  const std::vector<MalformedCase> table = motion_cases();
   EXPECT_GE(table.size(), 15u);
   expect_parse_errors(table, kMotion, kMotionSource,
                       [&sk](const std::string& text) { parse_deepmimic_motion(text, kMotionSource, sk); });

@@ -129,6 +129,9 @@ class BvhParser {
     const long frames = sc_.expect_int("the frame count");
     const int frames_line = sc_.line();
     if (frames < 1 || frames > kMaxFrames) sc_.fail("frame count must be 1.." + std::to_string(kMaxFrames));
+    if (frames * clip_.skeleton.num_joints() > kMaxClipRotations)
+      sc_.fail("clip too large: " + std::to_string(frames) + " frames of " + std::to_string(clip_.skeleton.num_joints()) +
+               " joints exceed " + std::to_string(kMaxClipRotations) + " joint rotations");
     sc_.expect_word("Frame");
     sc_.expect_word("Time:");
     const double dt = sc_.expect_double("the frame time");
@@ -174,7 +177,7 @@ class BvhParser {
       }
       clip_.frames.push_back(std::move(p));
     }
-    if (!sc_.at_end()) sc_.fail("unexpected data after the " + std::to_string(frames) + " frames 'Frames:' announced");
+    if (!sc_.at_end()) sc_.fail("unexpected data after the last frame ('Frames: " + std::to_string(frames) + "')");
     if (clip_.skeleton.joints[0].offset.norm() > 0) clip_.skeleton.joints[0].offset = Vec3::Zero();
   }
 
