@@ -1,12 +1,12 @@
 #include "motion/clip_io.hpp"
 
-#include <yaml-cpp/yaml.h>
 
 #include <cstdio>
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/text_scanner.hpp"
+#include "core/yaml_reader.hpp"
 #include "motion/asf_amc.hpp"
 #include "motion/bvh.hpp"
 #include "motion/deepmimic.hpp"
@@ -16,12 +16,6 @@ namespace {
 
 constexpr int kFormatVersion = 1;
 
-// yaml-cpp's messages may quote a raw byte of the input; keep error messages printable.
-std::string printable_message(std::string m) {
-  for (char& c : m)
-    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return m;
-}
 
 void put(std::string& out, double v) {
   char buf[40];
@@ -112,43 +106,6 @@ std::string write_clip(const Clip& clip) {
 
 namespace {
 
-class HeaderReader {
- public:
-  explicit HeaderReader(const std::string& source) : source_(source) {}
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& msg) const {
-    throw ParseError(source_, n.IsDefined() ? n.Mark().line + 1 : 0, msg);
-  }
-  YAML::Node need(const YAML::Node& map, const char* key, const std::string& where) const {
-    YAML::Node n = map[key];
-    if (!n.IsDefined() || n.IsNull()) fail(map, where + ": missing '" + key + "'");
-    return n;
-  }
-  double number(const YAML::Node& n, const std::string& what) const {
-    double v = 0;
-    if (!n.IsScalar() || !parse_double(n.Scalar(), v)) fail(n, what + ": expected a finite number");
-    return v;
-  }
-  long integer(const YAML::Node& n, const std::string& what) const {
-    long v = 0;
-    if (!n.IsScalar() || !parse_long(n.Scalar(), v)) fail(n, what + ": expected an integer");
-    return v;
-  }
-  std::string text(const YAML::Node& n, const std::string& what) const {
-    if (!n.IsScalar()) fail(n, what + ": expected a string");
-    return n.Scalar();
-  }
-  template <int N>
-  Eigen::Matrix<double, N, 1> vec(const YAML::Node& n, const std::string& what) const {
-    if (!n.IsSequence() || n.size() != N) fail(n, what + ": expected a list of " + std::to_string(N) + " numbers");
-    Eigen::Matrix<double, N, 1> v;
-    for (int i = 0; i < N; ++i) v[i] = number(n[static_cast<std::size_t>(i)], what);
-    return v;
-  }
-
- private:
-  const std::string& source_;
-};
-
 }  // namespace
 
 Clip parse_clip(std::string_view text, const std::string& source) {
@@ -168,31 +125,26 @@ Clip parse_clip(std::string_view text, const std::string& source) {
     pos = eol + 1;
   }
   if (sep == std::string_view::npos) throw ParseError(source, 0, "not a mimic clip: no '---' line ends the header");
-  HeaderReader hr(source);
-  YAML::Node h;
-  try {
-    h = YAML::Load(std::string(text.substr(0, sep)));
-  } catch (const YAML::Exception& e) {
-    throw ParseError(source, e.mark.line + 1, "header is not valid YAML: " + printable_message(e.msg));
-  }
+  const YamlReader hr(source);
+  const YAML::Node h = hr.parse(text.substr(0, sep), "header is not valid YAML");
   if (!h.IsMap()) throw ParseError(source, 1, "header is not a YAML mapping");
-  if (hr.text(hr.need(h, "format", "header"), "format") != "mimic-clip")
+  if (hr.text(hr.member(h, "format", "header"), "format") != "mimic-clip")
     hr.fail(h["format"], "'format' must be mimic-clip");
-  const long version = hr.integer(hr.need(h, "version", "header"), "version");
+  const long version = hr.integer(hr.member(h, "version", "header"), "version");
   if (version != kFormatVersion)
     hr.fail(h["version"], "version " + std::to_string(version) + " is not supported (this build reads " + std::to_string(kFormatVersion) + ")");
   Clip clip;
   clip.name = h["name"].IsDefined() ? hr.text(h["name"], "name") : std::filesystem::path(source).stem().string();
-  clip.fps = hr.number(hr.need(h, "fps", "header"), "fps");
+  clip.fps = hr.number(hr.member(h, "fps", "header"), "fps");
   if (!(clip.fps > 0) || clip.fps > 1e6) hr.fail(h["fps"], "fps must be positive");
-  const std::string loop = hr.text(hr.need(h, "loop", "header"), "loop");
+  const std::string loop = hr.text(hr.member(h, "loop", "header"), "loop");
   if (loop == "wrap") clip.loop = LoopMode::Wrap;
   else if (loop == "none") clip.loop = LoopMode::None;
   else hr.fail(h["loop"], "loop must be wrap or none");
-  const long nframes = hr.integer(hr.need(h, "frames", "header"), "frames");
+  const long nframes = hr.integer(hr.member(h, "frames", "header"), "frames");
   if (nframes < 1 || nframes > 10'000'000) hr.fail(h["frames"], "frames must be between 1 and 10,000,000");
 
-  const YAML::Node joints = hr.need(h, "joints", "header");
+  const YAML::Node joints = hr.member(h, "joints", "header");
   if (!joints.IsSequence() || joints.size() == 0) hr.fail(joints, "joints: expected a non-empty list");
   if (joints.size() > 4096) hr.fail(joints, "more than 4096 joints");
   Skeleton& sk = clip.skeleton;
@@ -201,13 +153,13 @@ Clip parse_clip(std::string_view text, const std::string& source) {
     const std::string where = "joint " + std::to_string(i);
     if (!jn.IsMap()) hr.fail(jn, where + ": expected a mapping");
     Joint j;
-    j.name = hr.text(hr.need(jn, "name", where), where + " name");
+    j.name = hr.text(hr.member(jn, "name", where), where + " name");
     if (sk.find(j.name) >= 0) hr.fail(jn["name"], where + ": duplicate joint name '" + printable_token(j.name) + "'");
-    const long parent = hr.integer(hr.need(jn, "parent", where), where + " parent");
+    const long parent = hr.integer(hr.member(jn, "parent", where), where + " parent");
     if (parent < -1 || parent >= static_cast<long>(i)) hr.fail(jn, where + ": parent must be -1 or an earlier joint");
     if ((i == 0) != (parent == -1)) hr.fail(jn, where + ": only joint 0, the root, has parent -1");
     j.parent = static_cast<int>(parent);
-    if (!parse_joint_type(hr.text(hr.need(jn, "type", where), where + " type"), j.type))
+    if (!parse_joint_type(hr.text(hr.member(jn, "type", where), where + " type"), j.type))
       hr.fail(jn["type"], where + ": type must be free, spherical, revolute or fixed");
     if ((i == 0) != (j.type == JointType::Free))
       hr.fail(jn["type"], where + (i == 0 ? ": the root must be a free joint" : ": only the root (joint 0) may be a free joint"));
@@ -218,7 +170,7 @@ Clip parse_clip(std::string_view text, const std::string& source) {
       if (std::abs(j.rest.norm() - 1.0) > 1e-6) hr.fail(jn["rest"], where + ": rest is not a unit quaternion");
     }
     if (j.type == JointType::Revolute) {
-      j.axis = hr.vec<3>(hr.need(jn, "axis", where), where + " axis");
+      j.axis = hr.vec<3>(hr.member(jn, "axis", where), where + " axis");
       if (std::abs(j.axis.norm() - 1.0) > 1e-6) hr.fail(jn["axis"], where + ": axis is not a unit vector");
     }
     if (const YAML::Node lim = jn["limits"]; lim.IsDefined()) {
@@ -246,11 +198,11 @@ Clip parse_clip(std::string_view text, const std::string& source) {
       const std::string where = "site " + std::to_string(i);
       if (!sites[i].IsMap()) hr.fail(sites[i], where + ": expected a mapping");
       Site s;
-      s.name = hr.text(hr.need(sites[i], "name", where), where + " name");
-      const long joint = hr.integer(hr.need(sites[i], "joint", where), where + " joint");
+      s.name = hr.text(hr.member(sites[i], "name", where), where + " name");
+      const long joint = hr.integer(hr.member(sites[i], "joint", where), where + " joint");
       if (joint < 0 || joint >= static_cast<long>(sk.joints.size())) hr.fail(sites[i], where + ": joint index out of range");
       s.joint = static_cast<int>(joint);
-      s.offset = hr.vec<3>(hr.need(sites[i], "offset", where), where + " offset");
+      s.offset = hr.vec<3>(hr.member(sites[i], "offset", where), where + " offset");
       sk.sites.push_back(std::move(s));
     }
   }

@@ -1,6 +1,5 @@
 #include "motion/deepmimic.hpp"
 
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,74 +8,17 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/text_scanner.hpp"
+#include "core/yaml_reader.hpp"
 
 namespace mimic {
 namespace {
 
-// yaml-cpp's messages may quote a raw byte of the input; keep error messages printable.
-std::string printable_message(std::string m) {
-  for (char& c : m)
-    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return m;
+// The top-level JSON object of a DeepMimic file.
+YAML::Node load_json_object(const YamlReader& js, std::string_view text) {
+  YAML::Node root = js.parse(text, "not valid JSON");
+  if (!root.IsMap()) js.fail(root, "expected a JSON object at the top level");
+  return root;
 }
-
-// JSON access with errors that name the file, the line and the key.
-class JsonReader {
- public:
-  explicit JsonReader(std::string source) : source_(std::move(source)) {}
-
-  YAML::Node load(std::string_view text) const {
-    try {
-      YAML::Node root = YAML::Load(std::string(text));
-      if (!root.IsMap()) fail(root, "expected a JSON object at the top level");
-      return root;
-    } catch (const YAML::Exception& e) {
-      throw ParseError(source_, e.mark.line + 1, "not valid JSON: " + printable_message(e.msg));
-    }
-  }
-
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& msg) const {
-    const int line = at.IsDefined() ? at.Mark().line + 1 : 0;
-    throw ParseError(source_, line > 0 ? line : 0, msg);
-  }
-
-  YAML::Node member(const YAML::Node& obj, const char* key, const std::string& where) const {
-    if (!obj.IsMap()) fail(obj, where + ": expected an object");
-    YAML::Node n = obj[key];
-    if (!n.IsDefined() || n.IsNull()) fail(obj, where + ": missing \"" + key + "\"");
-    return n;
-  }
-
-  double number(const YAML::Node& n, const std::string& what) const {
-    double v = 0.0;
-    if (!n.IsScalar() || !parse_double(n.Scalar(), v)) fail(n, what + ": expected a finite number");
-    return v;
-  }
-
-  double number(const YAML::Node& obj, const char* key, const std::string& where) const {
-    return number(member(obj, key, where), where + " \"" + key + "\"");
-  }
-
-  double number_or(const YAML::Node& obj, const char* key, const std::string& where, double dflt) const {
-    if (!obj[key].IsDefined()) return dflt;
-    return number(obj, key, where);
-  }
-
-  std::string string(const YAML::Node& obj, const char* key, const std::string& where) const {
-    YAML::Node n = member(obj, key, where);
-    if (!n.IsScalar()) fail(n, where + " \"" + key + "\": expected a string");
-    return n.Scalar();
-  }
-
-  YAML::Node array(const YAML::Node& obj, const char* key, const std::string& where) const {
-    YAML::Node n = member(obj, key, where);
-    if (!n.IsSequence()) fail(n, where + " \"" + key + "\": expected an array");
-    return n;
-  }
-
- private:
-  std::string source_;
-};
 
 const Quat& basis() {
   static const Quat q = Quat(Mat3{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});  // x->x, y->z, z->-y
@@ -92,7 +34,7 @@ Quat deepmimic_euler(double x, double y, double z) {
   return euler_intrinsic("ZYX", zyx);
 }
 
-Vec3 read_vec(const JsonReader& js, const YAML::Node& obj, const char* prefix, const std::string& where) {
+Vec3 read_vec(const YamlReader& js, const YAML::Node& obj, const char* prefix, const std::string& where) {
   Vec3 v;
   const char* axes[3] = {"X", "Y", "Z"};
   for (int k = 0; k < 3; ++k) v[k] = js.number(obj, (std::string(prefix) + axes[k]).c_str(), where);
@@ -137,9 +79,9 @@ Clip resample_irregular(const Clip& in, const std::vector<double>& times, double
 Quat deepmimic_to_mimic() { return basis(); }
 
 DeepMimicCharacter parse_deepmimic_character(std::string_view text, const std::string& source) {
-  JsonReader js(source);
-  const YAML::Node root = js.load(text);
-  const YAML::Node joints = js.array(js.member(root, "Skeleton", "character"), "Joints", "\"Skeleton\"");
+  const YamlReader js(source, '"');
+  const YAML::Node root = load_json_object(js, text);
+  const YAML::Node joints = js.sequence(js.member(root, "Skeleton", "character"), "Joints", "\"Skeleton\"");
   if (joints.size() == 0) js.fail(joints, "\"Joints\" is empty");
   if (joints.size() > 4096) js.fail(joints, "more than 4096 joints");
   DeepMimicCharacter ch;
@@ -150,10 +92,10 @@ DeepMimicCharacter parse_deepmimic_character(std::string_view text, const std::s
     const double id = js.number(jn, "ID", where);
     if (id != static_cast<double>(i)) js.fail(jn, where + ": \"ID\" is " + fmt_number(id) + ", joints must be listed in ID order (0, 1, 2, ...)");
     Joint j;
-    j.name = js.string(jn, "Name", where);
+    j.name = js.text(jn, "Name", where);
     if (j.name.empty()) js.fail(jn, where + ": empty \"Name\"");
     if (sk.find(j.name) >= 0) js.fail(jn, where + ": duplicate joint name '" + j.name + "'");
-    const std::string type = js.string(jn, "Type", where + " ('" + j.name + "')");
+    const std::string type = js.text(jn, "Type", where + " ('" + j.name + "')");
     const double parent = js.number(jn, "Parent", where);
     if (parent != std::floor(parent) || parent < -1 || parent >= static_cast<double>(i))
       js.fail(jn, where + " ('" + j.name + "'): \"Parent\" must be -1 for the root or an earlier joint's ID");
@@ -203,8 +145,8 @@ DeepMimicCharacter parse_deepmimic_character(std::string_view text, const std::s
       const YAML::Node bn = bodies[i];
       const std::string where = "body " + std::to_string(i);
       BodyDef b;
-      b.name = js.string(bn, "Name", where);
-      b.shape = js.string(bn, "Shape", where);
+      b.name = js.text(bn, "Name", where);
+      b.shape = js.text(bn, "Shape", where);
       b.mass = js.number(bn, "Mass", where);
       if (!(b.mass > 0)) js.fail(bn, where + " ('" + b.name + "'): \"Mass\" must be positive");
       b.pos = to_mimic(read_vec(js, bn, "Attach", where));
@@ -238,16 +180,16 @@ DeepMimicCharacter load_deepmimic_character(const std::filesystem::path& path) {
 }
 
 std::vector<PdGain> parse_deepmimic_pd_gains(std::string_view text, const std::string& source, const Skeleton& sk) {
-  JsonReader js(source);
-  const YAML::Node root = js.load(text);
-  const YAML::Node ctrls = js.array(root, "PDControllers", "controller file");
+  const YamlReader js(source, '"');
+  const YAML::Node root = load_json_object(js, text);
+  const YAML::Node ctrls = js.sequence(root, "PDControllers", "controller file");
   if (ctrls.size() != sk.joints.size())
     js.fail(ctrls, "\"PDControllers\" has " + std::to_string(ctrls.size()) + " entries for " +
                        std::to_string(sk.joints.size()) + " joints");
   std::vector<PdGain> gains(sk.joints.size());
   for (std::size_t i = 0; i < ctrls.size(); ++i) {
     const std::string where = "PD controller " + std::to_string(i);
-    const std::string name = js.string(ctrls[i], "Name", where);
+    const std::string name = js.text(ctrls[i], "Name", where);
     if (name != sk.joints[i].name)
       js.fail(ctrls[i], where + ": named '" + name + "', the character's joint " + std::to_string(i) + " is '" + sk.joints[i].name + "'");
     gains[i].kp = js.number(ctrls[i], "Kp", where);
@@ -258,8 +200,8 @@ std::vector<PdGain> parse_deepmimic_pd_gains(std::string_view text, const std::s
 }
 
 Clip parse_deepmimic_motion(std::string_view text, const std::string& source, const Skeleton& sk) {
-  JsonReader js(source);
-  const YAML::Node root = js.load(text);
+  const YamlReader js(source, '"');
+  const YAML::Node root = load_json_object(js, text);
   Clip clip;
   clip.name = std::filesystem::path(source).stem().string();
   clip.skeleton = sk;
@@ -274,7 +216,7 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
     if (sk.joints[j].type == JointType::Spherical) width += 4;
     else if (sk.joints[j].type == JointType::Revolute) width += 1;
   }
-  const YAML::Node frames = js.array(root, "Frames", "motion");
+  const YAML::Node frames = js.sequence(root, "Frames", "motion");
   if (frames.size() == 0) js.fail(frames, "\"Frames\" is empty");
   std::vector<double> times;  // start time of each frame
   double min_dt = 0.0, last_dt = 0.0;

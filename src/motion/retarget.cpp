@@ -1,13 +1,12 @@
 #include "motion/retarget.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
 #include <limits>
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/text_scanner.hpp"
+#include "core/yaml_reader.hpp"
 #include "motion/kinematics.hpp"
 
 namespace mimic {
@@ -15,15 +14,9 @@ namespace mimic {
 RetargetMap parse_retarget_map(std::string_view text, const std::string& source) {
   RetargetMap map;
   map.source = source;
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(text));
-  } catch (const YAML::Exception& e) {
-    throw ParseError(source, e.mark.line + 1, "not valid YAML: " + e.msg);
-  }
-  auto fail = [&](const YAML::Node& n, const std::string& msg) -> void {
-    throw ParseError(source, n.IsDefined() ? n.Mark().line + 1 : 0, msg);
-  };
+  const YamlReader yr(source);
+  const YAML::Node root = yr.parse(text, "not valid YAML");
+  auto fail = [&](const YAML::Node& n, const std::string& msg) { yr.fail(n, msg); };
   if (!root.IsMap()) fail(root, "expected a mapping with 'joints'");
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
