@@ -1,0 +1,52 @@
+#pragma once
+// The environment interface every task and learner uses: reset to an initial state, step with
+// an action, get an observation, named reward terms and why (or whether) the episode ended.
+#include <Eigen/Core>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mimic {
+
+enum class Termination {
+  None,       // the episode goes on
+  Fall,       // a failure: a body that must not touch the ground did (or a task's failure rule)
+  TimeLimit,  // truncated by the episode's length: not a failure, bootstrap the value
+  ClipEnd,    // a non-cyclic reference clip ended
+};
+const char* to_string(Termination t);
+// True for endings after which the return is cut off (not bootstrapped): failures.
+inline bool is_failure(Termination t) { return t == Termination::Fall; }
+
+struct StepResult {
+  Eigen::VectorXd observation;
+  std::vector<std::pair<std::string, double>> reward_terms;  // name, value; the task sums them
+  Termination termination = Termination::None;
+  bool done() const { return termination != Termination::None; }
+  double reward() const {
+    double r = 0;
+    for (const auto& [name, v] : reward_terms) r += v;
+    return r;
+  }
+};
+
+// Which part of an observation vector holds what (observation builders are selected by name).
+struct ObservationSlice {
+  std::string name;
+  int offset = 0, size = 0;
+};
+
+class Env {
+ public:
+  virtual ~Env() = default;
+  virtual int observation_size() const = 0;
+  virtual int action_size() const = 0;
+  virtual std::vector<ObservationSlice> observation_layout() const = 0;
+  // A fresh episode; `rng` draws whatever the environment randomises (initial state, targets).
+  virtual Eigen::VectorXd reset(std::mt19937_64& rng) = 0;
+  // One control step. Actions outside the documented range are clipped, never rejected.
+  virtual StepResult step(const Eigen::VectorXd& action) = 0;
+};
+
+}  // namespace mimic
