@@ -1,5 +1,6 @@
 #include "motion/kinematics.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace mimic {
@@ -47,16 +48,31 @@ std::vector<PoseVelocity> clip_velocities(const Clip& clip) {
     const Pose prev = has_prev ? (i > 0 ? clip.frames[static_cast<std::size_t>(i - 1)] : clip.sample(-dt)) : cur;
     const Pose next = has_next ? (i < n - 1 ? clip.frames[static_cast<std::size_t>(i + 1)] : clip.sample((i + 1) * dt)) : cur;
     const double span = dt * ((has_prev ? 1 : 0) + (has_next ? 1 : 0));
-    PoseVelocity& v = out[static_cast<std::size_t>(i)];
-    v.root_lin = (next.root_pos - prev.root_pos) / span;
-    v.root_ang = angular_velocity(prev.rot[0], next.rot[0], span);
-    v.joint_ang.assign(nj, Vec3::Zero());
-    for (std::size_t j = 1; j < nj; ++j) {
-      // Local frame: next = prev * exp(w * span).
-      v.joint_ang[j] = quat_to_rotvec(prev.rot[j].conjugate() * next.rot[j]) / span;
-    }
+    out[static_cast<std::size_t>(i)] = pose_velocity(prev, next, span);
   }
   return out;
+}
+
+PoseVelocity pose_velocity(const Pose& a, const Pose& b, double dt) {
+  PoseVelocity v;
+  v.root_lin = (b.root_pos - a.root_pos) / dt;
+  v.root_ang = angular_velocity(a.rot[0], b.rot[0], dt);
+  v.joint_ang.assign(a.rot.size(), Vec3::Zero());
+  for (std::size_t j = 1; j < a.rot.size(); ++j) {
+    // Local frame: b = a * exp(w * dt).
+    v.joint_ang[j] = quat_to_rotvec(a.rot[j].conjugate() * b.rot[j]) / dt;
+  }
+  return v;
+}
+
+std::pair<Pose, PoseVelocity> clip_state(const Clip& clip, double t) {
+  const double h = 1.0 / clip.fps;  // as clip_velocities: at frame times the two agree
+  double t0 = t - h, t1 = t + h;
+  if (clip.loop != LoopMode::Wrap) {  // stay inside the clip
+    t0 = std::clamp(t0, 0.0, std::max(0.0, clip.duration() - 2 * h));
+    t1 = t0 + 2 * h;
+  }
+  return {clip.sample(t), pose_velocity(clip.sample(t0), clip.sample(t1), t1 - t0)};
 }
 
 HeadingFrame HeadingFrame::of(const Pose& pose) {

@@ -25,8 +25,15 @@ struct PoseVelocity {
   std::vector<Vec3> joint_ang;  // size num_joints; entry 0 unused (zero)
 };
 
+// Velocities of the motion that goes from pose `a` to pose `b` in `dt` seconds.
+PoseVelocity pose_velocity(const Pose& a, const Pose& b, double dt);
+
 // Central differences inside the clip; at the ends one-sided, or across the seam of a wrap clip.
 std::vector<PoseVelocity> clip_velocities(const Clip& clip);
+
+// Pose and velocities of a clip at any time t (central difference over one frame either side,
+// one-sided at the ends of a non-cyclic clip): an initial state for a simulation.
+std::pair<Pose, PoseVelocity> clip_state(const Clip& clip, double t);
 
 // The heading frame of a pose: origin at the root's ground projection, X along the facing
 // direction, Z up. Expresses world points and rotations in it.

@@ -106,16 +106,27 @@ std::string geom_xml(const BodyDef& b) {
 
 }  // namespace
 
-double CharacterModel::rest_height() const {
-  const LinkFrames fk = forward_kinematics(skeleton, rest_pose(skeleton));
+namespace {
+// Lowest and highest body point in the rest pose with the root at the origin.
+std::pair<double, double> rest_extent(const CharacterModel& ch) {
+  const LinkFrames fk = forward_kinematics(ch.skeleton, rest_pose(ch.skeleton));
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (std::size_t j = 0; j < bodies.size(); ++j) {
-    const auto [a, b] = shape_z_extent(bodies[j], fk.joint_pos[j] + fk.joint_rot[j] * bodies[j].pos, fk.joint_rot[j] * bodies[j].rot);
+  for (std::size_t j = 0; j < ch.bodies.size(); ++j) {
+    const BodyDef& b = ch.bodies[j];
+    const auto [a, c] = shape_z_extent(b, fk.joint_pos[j] + fk.joint_rot[j] * b.pos, fk.joint_rot[j] * b.rot);
     lo = std::min(lo, a);
-    hi = std::max(hi, b);
+    hi = std::max(hi, c);
   }
+  return {lo, hi};
+}
+}  // namespace
+
+double CharacterModel::rest_height() const {
+  const auto [lo, hi] = rest_extent(*this);
   return hi - lo;
 }
+
+double CharacterModel::rest_root_height() const { return -rest_extent(*this).first; }
 
 std::string build_mjcf(const CharacterModel& ch, const MjcfOptions& opts) {
   ch.validate();

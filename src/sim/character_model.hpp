@@ -23,6 +23,8 @@ struct CharacterModel {
   double total_mass() const;
   // Height from the lowest to the highest point of the bodies in the rest pose (metres).
   double rest_height() const;
+  // Height of the root above the lowest body point in the rest pose: standing root height.
+  double rest_root_height() const;
   // Throws Error unless there is one body and one gain per joint with positive masses.
   void validate() const;
 };

@@ -1,0 +1,115 @@
+#include "env/character_env.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+InitState init_state_from_clip(const Clip& clip, double t) {
+  auto [pose, vel] = clip_state(clip, t);
+  return InitState{std::move(pose), std::move(vel), t};
+}
+
+CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& cfg, std::shared_ptr<const Clip> reference)
+    : cfg_(cfg), world_(ch, cfg.sim), reference_(std::move(reference)), obs_(world_, cfg.observations, reference_ != nullptr) {
+  const Skeleton& sk = ch.skeleton;
+  if (reference_ && reference_->skeleton.num_joints() != sk.num_joints())
+    throw Error("reference clip '" + reference_->name + "' does not fit character '" + ch.name + "'");
+  if (!(cfg.max_seconds > 0)) throw Error("max_seconds must be positive");
+  for (const Joint& j : sk.joints) {
+    if (j.type == JointType::Spherical) action_size_ += cfg.action_mode == ActionMode::AxisAngle ? 3 : 4;
+    if (j.type == JointType::Revolute) action_size_ += 1;
+  }
+  if (cfg.fall_links.empty()) {
+    for (std::size_t j = 0; j < ch.bodies.size(); ++j)
+      if (ch.bodies[j].fall_contact) fall_joints_.push_back(static_cast<int>(j));
+  } else {
+    for (const std::string& name : cfg.fall_links) {
+      const int j = sk.find(name);
+      if (j < 0) throw Error("fall_links: character '" + ch.name + "' has no body '" + name + "'");
+      fall_joints_.push_back(j);
+    }
+  }
+}
+
+Pose CharacterEnv::targets_from_action(const Eigen::VectorXd& a) const {
+  if (a.size() != action_size_)
+    throw Error("action has " + std::to_string(a.size()) + " values, the character takes " + std::to_string(action_size_));
+  const Skeleton& sk = world_.character().skeleton;
+  Pose t = rest_pose(sk);
+  Eigen::Index k = 0;
+  auto clipped = [&](Eigen::Index i) { return std::isfinite(a[i]) ? std::clamp(a[i], -kPi, kPi) : 0.0; };
+  for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+    const Joint& jt = sk.joints[j];
+    if (jt.type == JointType::Spherical) {
+      if (cfg_.action_mode == ActionMode::AxisAngle) {
+        t.rot[j] = rotvec_to_quat(Vec3(clipped(k), clipped(k + 1), clipped(k + 2)));
+        k += 3;
+      } else {
+        Quat q(clipped(k), clipped(k + 1), clipped(k + 2), clipped(k + 3));
+        t.rot[j] = q.norm() > 1e-9 ? q.normalized() : Quat::Identity();
+        k += 4;
+      }
+    } else if (jt.type == JointType::Revolute) {
+      double angle = clipped(k++);
+      if (!jt.limits.empty()) angle = std::clamp(angle, jt.limits[0].first, jt.limits[0].second);
+      t.rot[j] = Quat(Eigen::AngleAxisd(angle, jt.axis));
+    }
+  }
+  return t;
+}
+
+Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
+  if (init_sampler_) return reset(init_sampler_(rng));
+  if (reference_) return reset(init_state_from_clip(*reference_, 0.0));
+  // Standing: the rest pose with the lowest body point on the floor.
+  const CharacterModel& ch = world_.character();
+  InitState s{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3)), PoseVelocity{}, 0.0};
+  s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  return reset(s);
+}
+
+Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
+  world_.set_state(init.pose, &init.velocity);
+  world_.set_pd_targets(init.pose);
+  time_ = init.time;
+  elapsed_ = 0.0;
+  history_.clear();
+  history_.push_back(world_.link_frames());
+  return observe();
+}
+
+Eigen::VectorXd CharacterEnv::observe() {
+  Eigen::VectorXd out;
+  obs_.build(ObservationContext{&world_, &history_, reference_.get(), time_}, out);
+  return out;
+}
+
+Termination CharacterEnv::check_termination() const {
+  if (cfg_.early_termination && !fall_joints_.empty()) {
+    const std::vector<bool> contact = world_.ground_contacts();
+    for (int j : fall_joints_)
+      if (contact[static_cast<std::size_t>(j)]) return Termination::Fall;
+  }
+  if (reference_ && reference_->loop != LoopMode::Wrap && time_ >= reference_->duration() - 1e-9) return Termination::ClipEnd;
+  if (elapsed_ >= cfg_.max_seconds - 1e-9) return Termination::TimeLimit;
+  return Termination::None;
+}
+
+StepResult CharacterEnv::step(const Eigen::VectorXd& action) {
+  world_.set_pd_targets(targets_from_action(action));
+  world_.step();
+  const double dt = 1.0 / cfg_.sim.control_hz;
+  time_ += dt;
+  elapsed_ += dt;
+  history_.push_back(world_.link_frames());
+  while (static_cast<int>(history_.size()) > obs_.link_history()) history_.pop_front();
+  StepResult r;
+  r.observation = observe();
+  for (const auto& [name, term] : rewards_) r.reward_terms.emplace_back(name, term(*this));
+  r.termination = check_termination();
+  return r;
+}
+
+}  // namespace mimic

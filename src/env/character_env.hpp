@@ -1,0 +1,79 @@
+#pragma once
+// A simulated character as an environment: actions are PD targets, observations are built by
+// name (observations.hpp), episodes end on falls (chosen bodies touching the ground), at a time
+// limit, or at the end of a non-cyclic reference clip. Tasks add reward terms.
+#include <functional>
+#include <memory>
+
+#include "env/observations.hpp"
+
+namespace mimic {
+
+enum class ActionMode {
+  AxisAngle,   // 3 per spherical joint (rotation vector), 1 per revolute (angle); clipped to +-pi
+  Quaternion,  // 4 per spherical joint (normalised; zero = identity), 1 per revolute
+};
+
+struct CharacterEnvConfig {
+  SimConfig sim;
+  ObservationConfig observations;
+  ActionMode action_mode = ActionMode::AxisAngle;
+  // Bodies whose ground contact ends the episode as a fall. Empty: the character's own choice
+  // (DeepMimic's EnableFallContact). early_termination = false turns falls off (contact-rich clips).
+  std::vector<std::string> fall_links;
+  bool early_termination = true;
+  double max_seconds = 20.0;  // TimeLimit
+};
+
+// Where an episode starts: a pose, its velocities, and the time on the reference clip.
+struct InitState {
+  Pose pose;
+  PoseVelocity velocity;
+  double time = 0.0;
+};
+InitState init_state_from_clip(const Clip& clip, double t);
+
+class CharacterEnv : public Env {
+ public:
+  using RewardTerm = std::function<double(const CharacterEnv&)>;
+  using InitSampler = std::function<InitState(std::mt19937_64&)>;
+
+  CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& cfg, std::shared_ptr<const Clip> reference = nullptr);
+
+  int observation_size() const override { return obs_.size(); }
+  int action_size() const override { return action_size_; }
+  std::vector<ObservationSlice> observation_layout() const override { return obs_.layout(); }
+  // Starts from the init sampler's state: by default the reference clip's start, or standing.
+  Eigen::VectorXd reset(std::mt19937_64& rng) override;
+  Eigen::VectorXd reset(const InitState& init);
+  StepResult step(const Eigen::VectorXd& action) override;
+
+  void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
+  void add_reward_term(std::string name, RewardTerm term) { rewards_.emplace_back(std::move(name), std::move(term)); }
+
+  // PD targets an action stands for.
+  Pose targets_from_action(const Eigen::VectorXd& action) const;
+  const World& world() const { return world_; }
+  World& world() { return world_; }
+  const Clip* reference() const { return reference_.get(); }
+  double time() const { return time_; }  // on the reference clip: init time + elapsed
+  double elapsed() const { return elapsed_; }
+  const CharacterEnvConfig& config() const { return cfg_; }
+
+ private:
+  Eigen::VectorXd observe();
+  Termination check_termination() const;
+
+  CharacterEnvConfig cfg_;
+  World world_;
+  std::shared_ptr<const Clip> reference_;
+  ObservationBuilder obs_;
+  int action_size_ = 0;
+  std::vector<int> fall_joints_;
+  std::deque<LinkFrames> history_;
+  std::vector<std::pair<std::string, RewardTerm>> rewards_;
+  InitSampler init_sampler_;
+  double time_ = 0.0, elapsed_ = 0.0;
+};
+
+}  // namespace mimic

@@ -1,0 +1,53 @@
+#pragma once
+// Observation builders of a simulated character, selected by name in a config:
+//   full_state       root height, root rotation in the heading frame, joint rotations (quaternion
+//                    per spherical joint, angle per revolute), root linear and angular velocity in
+//                    the heading frame, joint velocities
+//   egocentric       seed 000's proprioception: velocimeter and gyro (root frame), uprightness
+//                    (world up in the root frame), root -> end effectors and head (root frame)
+//   links            seed 004 section 4.1: every link's position and quaternion over the last K
+//                    control steps, in the heading frame of the latest one
+//   link_velocities  every link's linear and angular velocity in the heading frame
+//   phase            the reference clip's phase in [0, 1)
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "env/env.hpp"
+#include "sim/world.hpp"
+
+namespace mimic {
+
+// What an observation may look at.
+struct ObservationContext {
+  const World* world = nullptr;
+  const std::deque<LinkFrames>* history = nullptr;  // latest last; at least one entry
+  const Clip* reference = nullptr;                  // for "phase"
+  double time = 0.0;                                // episode time on the reference clip
+};
+
+struct ObservationConfig {
+  std::vector<std::string> names{"full_state"};
+  int link_history = 1;  // K for "links"
+};
+
+class ObservationBuilder {
+ public:
+  // Throws Error naming an unknown observation, or "phase" without a reference clip.
+  ObservationBuilder(const World& world, const ObservationConfig& cfg, bool has_reference);
+  int size() const { return size_; }
+  const std::vector<ObservationSlice>& layout() const { return layout_; }
+  int link_history() const { return cfg_.link_history; }
+  void build(const ObservationContext& ctx, Eigen::VectorXd& out) const;
+
+ private:
+  int part_size(const std::string& name) const;
+  ObservationConfig cfg_;
+  Skeleton skeleton_;
+  std::vector<int> ego_points_;  // joints whose root-relative vectors "egocentric" reports
+  std::vector<int> dof_, body_;  // MuJoCo velocity address and body id per joint (-1: none)
+  std::vector<ObservationSlice> layout_;
+  int size_ = 0;
+};
+
+}  // namespace mimic

@@ -1,0 +1,191 @@
+// The simulated humanoid as an environment: sizes, actions, observations, terminations.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "env/character_env.hpp"
+#include "motion/deepmimic.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+CharacterModel humanoid() {
+  const auto dir = test::shared_data() / "deepmimic/characters";
+  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+}
+
+std::shared_ptr<const Clip> motion(const CharacterModel& ch, const char* name) {
+  return std::make_shared<const Clip>(load_deepmimic_motion(test::shared_data() / "deepmimic/motions" / name, ch.skeleton));
+}
+
+#define NEED_HUMANOID()                                                  \
+  std::filesystem::path shared_;                                         \
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
+
+Eigen::Ref<const Eigen::VectorXd> part(const Eigen::VectorXd& obs, const CharacterEnv& env, const std::string& name) {
+  for (const ObservationSlice& s : env.observation_layout())
+    if (s.name == name) return obs.segment(s.offset, s.size);
+  throw std::logic_error("no slice " + name);
+}
+
+}  // namespace
+
+TEST(CharacterEnv, SizesOfActionsAndObservations) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  CharacterEnvConfig cfg;
+  cfg.observations.names = {"full_state", "egocentric", "links", "link_velocities"};
+  cfg.observations.link_history = 3;
+  CharacterEnv env(ch, cfg);
+  EXPECT_EQ(env.action_size(), 8 * 3 + 4);  // axis-angle per spherical joint, angle per knee/elbow
+  // full_state: height 1 + root quat 4 + root velocities 6 + spherical (4 + 3) * 8 + revolute (1 + 1) * 4
+  // egocentric: velocimeter, gyro, uprightness 9 + ankles, wrists and head 3 * 5
+  const std::vector<int> sizes{75, 24, 3 * 7 * 15, 6 * 15};
+  ASSERT_EQ(env.observation_layout().size(), sizes.size());
+  int offset = 0;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    EXPECT_EQ(env.observation_layout()[i].size, sizes[i]) << env.observation_layout()[i].name;
+    EXPECT_EQ(env.observation_layout()[i].offset, offset);
+    offset += sizes[i];
+  }
+  EXPECT_EQ(env.observation_size(), offset);
+  cfg.action_mode = ActionMode::Quaternion;
+  EXPECT_EQ(CharacterEnv(ch, cfg).action_size(), 8 * 4 + 4);
+}
+
+TEST(CharacterEnv, ActionsBecomeClippedPdTargets) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  CharacterEnv env(ch, CharacterEnvConfig{});
+  Eigen::VectorXd a = Eigen::VectorXd::Zero(env.action_size());
+  a.segment(0, 3) << 0.3, -0.2, 0.1;  // chest, the first spherical joint
+  a[3] = 100.0;                       // neck x: clipped to pi
+  a[4] = std::nan("");                // neck y: not a number -> 0
+  const Pose t = env.targets_from_action(a);
+  EXPECT_LT(rotation_distance(t.rot[1], rotvec_to_quat(Vec3(0.3, -0.2, 0.1))), 1e-12);
+  EXPECT_LT(rotation_distance(t.rot[2], rotvec_to_quat(Vec3(kPi, 0, 0))), 1e-12);
+  // right_knee: the 7th action value after 2 spherical + right_hip; its limit is [-3.14, 0].
+  Eigen::VectorXd knee = Eigen::VectorXd::Zero(env.action_size());
+  knee[9] = 1.0;
+  EXPECT_NEAR(revolute_angle(ch.skeleton.joints[4], env.targets_from_action(knee).rot[4]), 0.0, 1e-12);
+  knee[9] = -1.0;
+  EXPECT_NEAR(revolute_angle(ch.skeleton.joints[4], env.targets_from_action(knee).rot[4]), -1.0, 1e-12);
+  EXPECT_THROW(env.targets_from_action(Eigen::VectorXd::Zero(5)), Error);
+}
+
+TEST(CharacterEnv, StandingWithZeroActionsRunsToTheTimeLimit) {
+  NEED_HUMANOID();
+  CharacterEnvConfig cfg;
+  cfg.max_seconds = 2.0;
+  CharacterEnv env(humanoid(), cfg);
+  std::mt19937_64 rng(1);
+  env.reset(rng);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
+  StepResult r;
+  int steps = 0;
+  do {
+    r = env.step(zero);
+    ++steps;
+  } while (!r.done());
+  EXPECT_EQ(r.termination, Termination::TimeLimit);
+  EXPECT_FALSE(is_failure(r.termination));
+  EXPECT_EQ(steps, 60);
+  EXPECT_GT(env.world().pose().root_pos.z(), 0.8);
+}
+
+TEST(CharacterEnv, TorsoOnTheGroundIsAFall) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  CharacterEnv env(ch, CharacterEnvConfig{});
+  InitState lying{rest_pose(ch.skeleton, Vec3(0, 0, 0.1)), PoseVelocity{}, 0.0};  // chest sphere touching
+  lying.pose.rot[0] = axis_rotation('y', kPi / 2);  // face down
+  lying.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  env.reset(lying);
+  const StepResult r = env.step(Eigen::VectorXd::Zero(env.action_size()));
+  EXPECT_EQ(r.termination, Termination::Fall);
+  EXPECT_TRUE(is_failure(r.termination));
+  // The same with early termination off goes on.
+  CharacterEnvConfig off;
+  off.early_termination = false;
+  CharacterEnv env2(ch, off);
+  env2.reset(lying);
+  EXPECT_EQ(env2.step(Eigen::VectorXd::Zero(env2.action_size())).termination, Termination::None);
+}
+
+TEST(CharacterEnv, NonCyclicReferenceEndsTheEpisode) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto kick = motion(ch, "humanoid3d_kick.txt");
+  CharacterEnvConfig cfg;
+  cfg.early_termination = false;
+  cfg.observations.names = {"phase"};
+  CharacterEnv env(ch, cfg, kick);
+  env.reset(init_state_from_clip(*kick, kick->duration() - 0.05));
+  EXPECT_EQ(env.step(Eigen::VectorXd::Zero(env.action_size())).termination, Termination::None);
+  EXPECT_EQ(env.step(Eigen::VectorXd::Zero(env.action_size())).termination, Termination::ClipEnd);
+}
+
+TEST(CharacterEnv, ObservationsAreInTheRightFrames) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  CharacterEnvConfig cfg;
+  cfg.observations.names = {"egocentric", "links", "phase", "full_state"};
+  CharacterEnv env(ch, cfg, walk);
+  // Upright root turned to face +Y, moving along world +Y at 1 m/s, at 0.3 s on the clip.
+  InitState s{rest_pose(ch.skeleton, Vec3(2, 3, 0.9)), PoseVelocity{}, 0.3};
+  s.pose.rot[0] = axis_rotation('z', kPi / 2);
+  s.velocity.root_lin = Vec3(0, 1, 0);
+  s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  const Eigen::VectorXd obs = env.reset(s);
+  const auto ego = part(obs, env, "egocentric");
+  EXPECT_TRUE(ego.segment(0, 3).isApprox(Eigen::Vector3d(1, 0, 0), 1e-9));  // velocimeter: forward
+  EXPECT_TRUE(ego.segment(6, 3).isApprox(Eigen::Vector3d(0, 0, 1), 1e-9));  // uprightness
+  const auto links = part(obs, env, "links");
+  EXPECT_TRUE(links.segment(0, 3).isApprox(Eigen::Vector3d(0, 0, 0.9), 1e-9));  // root over the heading origin
+  EXPECT_TRUE(links.segment(3, 4).isApprox(Eigen::Vector4d(1, 0, 0, 0), 1e-9));  // no yaw left
+  EXPECT_NEAR(part(obs, env, "phase")[0], 0.3 / walk->duration(), 1e-12);
+  const auto full = part(obs, env, "full_state");
+  EXPECT_NEAR(full[0], 0.9, 1e-12);
+  EXPECT_TRUE(full.segment(1 + 4 + 8 * 4 + 4, 3).isApprox(Eigen::Vector3d(1, 0, 0), 1e-9));  // forward velocity
+  CharacterEnvConfig bad;
+  bad.observations.names = {"vision"};
+  EXPECT_THROW(CharacterEnv(ch, bad), Error);
+  bad.observations.names = {"phase"};
+  EXPECT_THROW(CharacterEnv(ch, bad), Error);  // no reference clip
+}
+
+TEST(CharacterEnv, InitStateFromClipHasTheClipsVelocities) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  const auto vel = clip_velocities(*walk);
+  const InitState s = init_state_from_clip(*walk, 10 / walk->fps);
+  EXPECT_TRUE(s.velocity.root_lin.isApprox(vel[10].root_lin, 1e-9));
+  EXPECT_TRUE(s.velocity.joint_ang[3].isApprox(vel[10].joint_ang[3], 1e-9));
+  CharacterEnv env(ch, CharacterEnvConfig{}, walk);
+  env.reset(s);
+  // The simulation starts with the clip's root velocity.
+  EXPECT_NEAR(env.world().data()->qvel[0], vel[10].root_lin.x(), 1e-9);
+}
+
+TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  CharacterEnvConfig cfg;
+  cfg.observations = {{"links"}, 2};
+  CharacterEnv env(ch, cfg);
+  std::mt19937_64 rng(3);
+  const Eigen::VectorXd first = env.reset(rng);
+  const int per_frame = 7 * 15;
+  EXPECT_TRUE(first.head(per_frame).isApprox(first.tail(per_frame)));  // history padded with the first frame
+  Eigen::VectorXd a = Eigen::VectorXd::Zero(env.action_size());
+  a.segment(15, 3) << 0, -1.0, 0;  // right shoulder moves: the two frames now differ
+  StepResult r = env.step(a);
+  for (int i = 0; i < 3; ++i) r = env.step(a);
+  EXPECT_GT((r.observation.head(per_frame) - r.observation.tail(per_frame)).norm(), 1e-3);
+}
