@@ -146,10 +146,12 @@ std::string build_mjcf(const CharacterModel& ch, const MjcfOptions& opts) {
       "    <texture name=\"grid\" type=\"2d\" builtin=\"checker\" rgb1=\".82 .84 .86\" rgb2=\".72 .74 .76\" width=\"512\" height=\"512\"/>\n"
       "    <material name=\"grid\" texture=\"grid\" texrepeat=\"1 1\" texuniform=\"true\" reflectance=\".05\"/>\n"
       "    <texture name=\"sky\" type=\"skybox\" builtin=\"gradient\" rgb1=\".55 .7 .85\" rgb2=\".1 .15 .2\" width=\"256\" height=\"256\"/>\n"
+      "{}"
       "  </asset>\n"
       "  <worldbody>\n"
       "    <light name=\"sun\" directional=\"true\" pos=\"0 0 5\" dir=\"-0.3 -0.3 -1\" diffuse=\".8 .8 .8\"/>\n",
-      ch.name, ch.name, num(opts.timestep), num(opts.armature), num(opts.friction));
+      ch.name, ch.name, num(opts.timestep), num(opts.armature), num(opts.friction), opts.extra_assets);
+  xml += opts.extra_worldbody;
   if (opts.floor)
     xml += "    <geom name=\"floor\" type=\"plane\" size=\"100 100 0.1\" material=\"grid\" contype=\"1\" conaffinity=\"1\"/>\n";
   // Bodies nest like the skeleton: emit depth-first with explicit closing tags.

@@ -34,6 +34,9 @@ struct MjcfOptions {
   bool floor = true;
   double armature = 0.01;          // added rotor inertia per joint DoF: steadies light links
   double friction = 0.9;
+  // Extra MJCF inside <asset> and <worldbody> (terrain, projectiles): added as given.
+  std::string extra_assets;
+  std::string extra_worldbody;
 };
 
 // MJCF text of the character standing on a floor. Joints keep the skeleton's names; bodies are

@@ -9,7 +9,10 @@
 
 namespace mimic {
 
-World::World(const CharacterModel& ch, const SimConfig& cfg) : World(ch, build_mjcf(ch, MjcfOptions{1.0 / cfg.physics_hz}), cfg) {}
+World::World(const CharacterModel& ch, const SimConfig& cfg) : World(ch, cfg, MjcfOptions{}) {}
+
+World::World(const CharacterModel& ch, const SimConfig& cfg, MjcfOptions model)
+    : World(ch, build_mjcf(ch, [&] { model.timestep = 1.0 / cfg.physics_hz; return model; }()), cfg) {}
 
 World::World(const CharacterModel& ch, const std::string& mjcf, const SimConfig& cfg) : ch_(ch), cfg_(cfg) {
   if (!(cfg.physics_hz > 0) || !(cfg.control_hz > 0) || cfg.control_hz > cfg.physics_hz)

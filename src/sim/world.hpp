@@ -22,6 +22,8 @@ class World {
  public:
   // Builds the MJCF of `ch` and compiles it; throws Error with MuJoCo's message on failure.
   World(const CharacterModel& ch, const SimConfig& cfg = {});
+  // The same with model options (terrain, extra bodies); the timestep comes from `cfg`.
+  World(const CharacterModel& ch, const SimConfig& cfg, MjcfOptions model);
   // Compiles a given MJCF text for `ch`'s skeleton (joint names must match).
   World(const CharacterModel& ch, const std::string& mjcf, const SimConfig& cfg);
   ~World();
