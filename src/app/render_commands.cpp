@@ -4,6 +4,7 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "motion/asf_amc.hpp"
 #include "motion/deepmimic.hpp"
 #include "render/clip_video.hpp"
 
@@ -28,6 +29,7 @@ CharacterModel character_for(const Clip& clip, const std::filesystem::path& inpu
 void add_render_commands(CLI::App& app) {
   struct Args {
     std::filesystem::path input, output, controller;
+    double mass = 70.0;
     LoadOptions load;
     ClipVideoOptions video;
   };
@@ -50,14 +52,16 @@ void add_render_commands(CLI::App& app) {
   CLI::App* character = app.add_subcommand("character", "simulated characters");
   character->require_subcommand(1);
   CLI::App* build = character->add_subcommand("build", "write the MuJoCo model (MJCF) of a character or of a clip's skeleton");
-  build->add_option("source", args->input, "DeepMimic character file, or any motion file (its skeleton)")->required()->check(CLI::ExistingFile);
+  build->add_option("source", args->input, "DeepMimic character file, an ASF skeleton, or any motion file (its skeleton)")->required()->check(CLI::ExistingFile);
   build->add_option("--ctrl", args->controller, "DeepMimic PD-controller file (gains)");
+  build->add_option("--mass", args->mass, "body mass (kg) of a body generated from a skeleton")->capture_default_str();
   build->add_option("-o,--output", args->output, "output .xml")->required();
   build->callback([args] {
     CharacterModel ch;
     const bool is_character = args->input.extension() == ".txt" && read_text_file(args->input).find("\"Skeleton\"") != std::string::npos;
     if (is_character) ch = CharacterModel::from_deepmimic(args->input, args->controller);
-    else ch = CharacterModel::from_skeleton(load_motion(args->input, args->load).skeleton, args->input.stem().string());
+    else if (args->input.extension() == ".asf") ch = CharacterModel::from_skeleton(load_asf(args->input).skeleton, args->input.stem().string(), args->mass);
+    else ch = CharacterModel::from_skeleton(load_motion(args->input, args->load).skeleton, args->input.stem().string(), args->mass);
     write_file_atomic(args->output, build_mjcf(ch));
     spdlog::info("wrote {}: {} bodies, {:.2f} kg, {:.3f} m tall at rest", args->output.string(), ch.bodies.size(), ch.total_mass(), ch.rest_height());
   });

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -32,30 +33,92 @@ CharacterModel CharacterModel::from_deepmimic(const std::filesystem::path& chara
   return ch;
 }
 
-CharacterModel CharacterModel::from_skeleton(const Skeleton& sk, const std::string& name) {
+namespace {
+
+// Body part of a joint, from its name (CMU/ASF, BVH and DeepMimic naming): sets the capsule
+// radius, the share of the body mass and the servo's strength (seed 000: strong legs, weak toes).
+struct BodyPart {
+  const char* keywords[6];
+  double radius;      // m
+  double kp;          // N m / rad for a 70 kg body
+  double torque;      // N m
+};
+constexpr BodyPart kParts[] = {
+    {{"toe"}, 0.025, 40, 20},
+    {{"finger", "thumb", "hand", "wrist"}, 0.03, 30, 20},
+    {{"foot", "ankle"}, 0.04, 300, 90},
+    {{"tibia", "knee", "shin", "leg"}, 0.05, 500, 150},
+    {{"femur", "thigh", "hip", "upleg"}, 0.065, 500, 200},
+    {{"radius", "elbow", "forearm"}, 0.035, 200, 60},
+    {{"humerus", "shoulder", "arm", "clavicle", "collar"}, 0.045, 300, 100},
+    {{"head", "neck"}, 0.06, 150, 50},
+};
+constexpr BodyPart kTorso{{"torso"}, 0.09, 800, 200};  // spine, chest, back, pelvis, root ...
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+const BodyPart& body_part(const std::string& joint_name) {
+  const std::string n = lower(joint_name);
+  for (const BodyPart& p : kParts)
+    for (const char* k : p.keywords)
+      if (k && n.find(k) != std::string::npos) return p;
+  return kTorso;
+}
+
+}  // namespace
+
+CharacterModel CharacterModel::from_skeleton(const Skeleton& sk, const std::string& name, double total_mass) {
   sk.validate();
+  if (!(total_mass > 0)) throw Error("character '" + name + "': total mass must be positive");
   CharacterModel ch;
   ch.name = name;
   ch.skeleton = sk;
   const auto children = sk.children();
+  double volume = 0.0;
+  std::vector<double> volumes;
   for (std::size_t j = 0; j < sk.joints.size(); ++j) {
-    // The bone: towards the first child, else the first site on this joint, else a short stub.
-    Vec3 tip(0, 0, -0.1);
-    if (!children[j].empty()) tip = sk.joints[static_cast<std::size_t>(children[j][0])].offset;
-    else for (const Site& site : sk.sites) if (site.joint == static_cast<int>(j)) { tip = site.offset; break; }
-    const double length = std::max(tip.norm(), 0.02);
+    // The bone: towards the farthest child, else the joint's first site; none: a sphere.
+    Vec3 tip = Vec3::Zero();
+    for (int c : children[j])
+      if (sk.joints[static_cast<std::size_t>(c)].offset.norm() > tip.norm()) tip = sk.joints[static_cast<std::size_t>(c)].offset;
+    if (tip.norm() < 0.01)
+      for (const Site& site : sk.sites)
+        if (site.joint == static_cast<int>(j)) { tip = site.offset; break; }
+    const BodyPart& part = j == 0 ? kTorso : body_part(sk.joints[j].name);
+    const double r = part.radius;
     BodyDef b;
     b.name = sk.joints[j].name;
-    b.shape = "capsule";
-    b.pos = tip / 2;
-    b.rot = tip.norm() > 1e-9 ? Quat::FromTwoVectors(Vec3::UnitZ(), tip) : Quat::Identity();
-    b.size = Vec3(0.08, 0.08, length);
-    b.mass = std::max(0.2, 1000.0 * kPi * 0.03 * 0.03 * length * 3.0);
     b.color = Eigen::Vector4d(0.47, 0.55, 0.69, 1.0);
+    if (tip.norm() < 0.01) {
+      b.shape = "sphere";
+      b.size = Vec3::Constant(2 * r);
+      volumes.push_back(4.0 / 3.0 * kPi * r * r * r);
+    } else {
+      // Capsule between the joint and the bone's tip, shortened by the radius at both ends so
+      // neighbouring capsules meet rather than overlap.
+      const double length = std::max(tip.norm() - 2 * r, 0.01);
+      b.shape = "capsule";
+      b.pos = tip / 2;
+      b.rot = Quat::FromTwoVectors(Vec3::UnitZ(), tip);
+      b.size = Vec3(2 * r, 2 * r, length);
+      volumes.push_back(kPi * r * r * length + 4.0 / 3.0 * kPi * r * r * r);
+    }
+    volume += volumes.back();
     ch.bodies.push_back(b);
   }
+  // Masses in proportion to volume, summing to the requested body mass; gains scale with it.
+  const double scale = total_mass / 70.0;
   ch.gains.resize(sk.joints.size());
-  for (std::size_t j = 1; j < sk.joints.size(); ++j) ch.gains[j] = PdGain{300.0, 30.0};
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    ch.bodies[j].mass = std::max(1e-3 * total_mass, total_mass * volumes[j] / volume);
+    if (j == 0) continue;
+    const BodyPart& part = body_part(sk.joints[j].name);
+    ch.gains[j] = PdGain{part.kp * scale, 0.1 * part.kp * scale};
+    if (ch.skeleton.joints[j].torque_limit <= 0) ch.skeleton.joints[j].torque_limit = part.torque * scale;
+  }
   return ch;
 }
 

@@ -17,9 +17,12 @@ struct CharacterModel {
 
   // From DeepMimic's character file and, optionally, its PD-controller file (else default gains).
   static CharacterModel from_deepmimic(const std::filesystem::path& character, const std::filesystem::path& controller = {});
-  // A simple body for any skeleton (BVH, ASF, .mclip): per joint a capsule along the bone to its
-  // first child or site (radius 4 cm, 1000 kg/m^3 over a 6 cm-wide limb), gains from its size.
-  static CharacterModel from_skeleton(const Skeleton& sk, const std::string& name);
+  // A body generated for any skeleton (BVH, ASF, .mclip), as seed 000 built its CMU humanoid
+  // from segment lengths: per joint a capsule along its bone (towards the farthest child or its
+  // site; a sphere where there is none) with a radius by body part, masses in proportion to
+  // volume summing to `total_mass`, and servo gains and torque limits by body part (strong legs
+  // and torso, weak hands and toes), scaled with the mass.
+  static CharacterModel from_skeleton(const Skeleton& sk, const std::string& name, double total_mass = 70.0);
   double total_mass() const;
   // Height from the lowest to the highest point of the bodies in the rest pose (metres).
   double rest_height() const;
