@@ -21,6 +21,7 @@ int render_clip_video(const CharacterModel& ch, const Clip& clip, const std::fil
   const double seconds = opts.seconds > 0 ? opts.seconds : clip.duration();
   const int frames = std::max(1, static_cast<int>(std::lround(seconds * opts.fps)) + (opts.seconds > 0 ? 0 : 1));
   std::vector<std::uint8_t> rgb;
+  const double height = ch.rest_height();
   Vec3 smoothed = clip.frames.front().root_pos;
   for (int f = 0; f < frames; ++f) {
     const Pose pose = clip.sample(static_cast<double>(f) / opts.fps);
@@ -33,7 +34,8 @@ int render_clip_video(const CharacterModel& ch, const Clip& clip, const std::fil
     // Follow the root on the ground, smoothed so the picture does not shake with the gait.
     smoothed = f == 0 ? pose.root_pos : 0.9 * smoothed + 0.1 * pose.root_pos;
     CameraSpec cam = opts.camera;
-    cam.lookat = Vec3(smoothed.x(), smoothed.y(), 0) + opts.camera.lookat;
+    cam.lookat = Vec3(smoothed.x(), smoothed.y(), 0.55 * height) + opts.camera.lookat;
+    if (cam.distance <= 0) cam.distance = 2.2 * height;
     if (opts.ghost) cam.lookat += 0.5 * (HeadingFrame::of(pose).yaw * opts.ghost_offset);
     renderer.render(world.data(), cam, rgb, opts.ghost ? ghost.data() : nullptr);
     video.write(rgb);

@@ -14,7 +14,9 @@ struct ClipVideoOptions {
   double seconds = 0.0;                // 0: the clip's duration (wrap clips: one cycle)
   bool ghost = false;
   Vec3 ghost_offset = Vec3(0, 1.0, 0);  // ghost position relative to the character
-  CameraSpec camera;                    // lookat is relative to the root's ground point
+  // lookat is added to the root's ground point raised to 55% of the character's height; a
+  // distance of 0 frames the character (2.2 times its height).
+  CameraSpec camera{Vec3::Zero(), 0.0, 90.0, -12.0};
 };
 
 // Returns the number of frames written. Throws Error if no GL context or ffmpeg is available.

@@ -3,9 +3,9 @@
 #include <mujoco/mujoco.h>
 
 #include <cmath>
-#include <cstring>
 
 #include "core/error.hpp"
+#include "sim/mujoco_load.hpp"
 
 namespace mimic {
 
@@ -30,17 +30,7 @@ World::~World() {
 }
 
 void World::init(const std::string& mjcf) {
-  // MuJoCo 2.2 reads XML from files; a virtual file system keeps this in memory.
-  mjVFS vfs;
-  mj_defaultVFS(&vfs);
-  const char* name = "character.xml";
-  if (mj_makeEmptyFileVFS(&vfs, name, static_cast<int>(mjcf.size())) != 0) throw Error("MuJoCo: cannot allocate a virtual file");
-  const int idx = mj_findFileVFS(&vfs, name);
-  std::memcpy(vfs.filedata[idx], mjcf.data(), mjcf.size());
-  char err[1000] = "";
-  m_ = mj_loadXML(name, &vfs, err, sizeof err);
-  mj_deleteVFS(&vfs);
-  if (!m_) throw Error("MuJoCo rejected the model of '" + ch_.name + "': " + err);
+  m_ = compile_mjcf(mjcf, "'" + ch_.name + "'");
   m_->opt.timestep = 1.0 / cfg_.physics_hz;
   d_ = mj_makeData(m_);
   const Skeleton& sk = ch_.skeleton;

@@ -1,0 +1,36 @@
+#include "sim/mujoco_load.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <mutex>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+namespace {
+void print_warning(const char* msg) { std::fprintf(stderr, "MuJoCo warning: %s\n", msg); }
+}  // namespace
+
+mjModel* compile_mjcf(const std::string& mjcf, const std::string& what) {
+  static std::once_flag handlers;
+  std::call_once(handlers, [] { mju_user_warning = print_warning; });
+  // MuJoCo 2.2 reads XML from files; a virtual file system keeps the text in memory. The VFS is
+  // megabytes, so it lives on the heap rather than on a worker thread's stack.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* name = "model.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(mjcf.size())) != 0)
+    throw Error("MuJoCo cannot allocate a virtual file for " + what);
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], mjcf.data(), mjcf.size());
+  char err[1000] = "";
+  mjModel* m = mj_loadXML(name, vfs.get(), err, sizeof err);
+  mj_deleteVFS(vfs.get());
+  if (!m) throw Error("MuJoCo rejected the model of " + what + ": " + err);
+  return m;
+}
+
+}  // namespace mimic
