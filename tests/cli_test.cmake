@@ -46,6 +46,12 @@ run_ok(motion info ${OUT}/jj60.mclip)
 expect_in("${LAST_OUT}" "55 at 60.000 Hz")
 run_ok(motion mirror ${OUT}/demo/jumping_jack.mclip -o ${OUT}/jj_mirror.mclip)
 
+# Models a user can open in any MuJoCo viewer.
+run_ok(character build --builtin walker -o ${OUT}/walker.xml)
+run_ok(character build ${OUT}/demo/jumping_jack.mclip --mass 60 -o ${OUT}/jack_body.xml)
+expect_in("${LAST_OUT}" "60.00 kg")
+run_fails("give a source file or --builtin" character build -o ${OUT}/nothing.xml)
+
 # Bad input: a clear error naming the file, non-zero exit, no crash.
 file(WRITE ${OUT}/broken.bvh "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n}\nMOTION\nFrames: 2\nFrame Time: 0.03\n1 2 3 4 5 6\n1 2 3\n")
 run_fails("broken.bvh:11: frame 1 has 3 values, expected 6" motion info ${OUT}/broken.bvh)
@@ -67,6 +73,9 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${LAST_OUT}" "end-effector error")
   run_ok(motion info ${OUT}/cmu_walk.txt --character ${DATA}/deepmimic/characters/humanoid3d.txt)
   expect_in("${LAST_OUT}" "994 at 120.000 Hz")
+  run_ok(character build ${DATA}/deepmimic/characters/humanoid3d.txt --ctrl ${DATA}/deepmimic/characters/humanoid3d_ctrl.txt -o ${OUT}/humanoid3d.xml)
+  expect_in("${LAST_OUT}" "15 bodies, 45.00 kg, 1.619 m tall at rest")
+  run_fails("does not fit the character" render ${DATA}/cmu-bvh/131_01.bvh --character ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/x.mp4)
 else()
   message(STATUS "shared data not found: skipped the DeepMimic/CMU part")
 endif()

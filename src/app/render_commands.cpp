@@ -4,6 +4,8 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "env/planar_walker.hpp"
+#include "env/reacher_arm.hpp"
 #include "motion/asf_amc.hpp"
 #include "motion/deepmimic.hpp"
 #include "render/clip_video.hpp"
@@ -30,6 +32,7 @@ void add_render_commands(CLI::App& app) {
   struct Args {
     std::filesystem::path input, output, controller;
     double mass = 70.0;
+    std::string builtin;
     LoadOptions load;
     ClipVideoOptions video;
   };
@@ -52,11 +55,21 @@ void add_render_commands(CLI::App& app) {
   CLI::App* character = app.add_subcommand("character", "simulated characters");
   character->require_subcommand(1);
   CLI::App* build = character->add_subcommand("build", "write the MuJoCo model (MJCF) of a character or of a clip's skeleton");
-  build->add_option("source", args->input, "DeepMimic character file, an ASF skeleton, or any motion file (its skeleton)")->required()->check(CLI::ExistingFile);
+  auto* source = build->add_option("source", args->input, "DeepMimic character file, an ASF skeleton, or any motion file (its skeleton)")->check(CLI::ExistingFile);
+  build->add_option("--builtin", args->builtin, "a validation body instead: walker, arm2 or arm3 (seeds 000/002)")
+      ->check(CLI::IsMember({"walker", "arm2", "arm3"}))->excludes(source);
   build->add_option("--ctrl", args->controller, "DeepMimic PD-controller file (gains)");
   build->add_option("--mass", args->mass, "body mass (kg) of a body generated from a skeleton")->capture_default_str();
   build->add_option("-o,--output", args->output, "output .xml")->required();
   build->callback([args] {
+    if (!args->builtin.empty()) {
+      const std::string xml = args->builtin == "walker" ? planar_walker_mjcf()
+                              : reacher_arm_mjcf(args->builtin == "arm2" ? ReacherConfig::two_link() : ReacherConfig::three_link());
+      write_file_atomic(args->output, xml);
+      spdlog::info("wrote {} ({})", args->output.string(), args->builtin);
+      return;
+    }
+    if (args->input.empty()) throw Error("character build: give a source file or --builtin");
     CharacterModel ch;
     const bool is_character = args->input.extension() == ".txt" && read_text_file(args->input).find("\"Skeleton\"") != std::string::npos;
     if (is_character) ch = CharacterModel::from_deepmimic(args->input, args->controller);
