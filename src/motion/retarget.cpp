@@ -176,25 +176,29 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
     report->scale = scale;
     report->ground_shift = shift;
     report->effectors.clear();
-    LinkFrames tfk;
+    std::vector<std::pair<int, int>> pairs;  // target joint, source joint
     for (const std::string& name : map.end_effectors) {
       const int tj = target.find(name);
       if (tj < 0) throw Error(map.source + ": end effector '" + name + "' is not a target joint");
       const int sj = source_of[static_cast<std::size_t>(tj)];
       if (sj < 0) throw Error(map.source + ": end effector '" + name + "' is not mapped to a source joint");
-      EffectorError e{name, 0.0, 0.0};
-      for (std::size_t f = 0; f < src.frames.size(); ++f) {
-        forward_kinematics(src.skeleton, src.frames[f], sfk);
-        forward_kinematics(target, out.frames[f], tfk);
-        const Vec3 want = scale * (sfk.joint_pos[static_cast<std::size_t>(sj)] - sfk.joint_pos[static_cast<std::size_t>(source_of[0])]);
-        const Vec3 got = tfk.joint_pos[static_cast<std::size_t>(tj)] - tfk.joint_pos[0];
-        const double err = (want - got).norm();
-        e.mean += err;
-        e.max = std::max(e.max, err);
-      }
-      e.mean /= static_cast<double>(std::max<std::size_t>(1, src.frames.size()));
-      report->effectors.push_back(e);
+      pairs.emplace_back(tj, sj);
+      report->effectors.push_back(EffectorError{name, 0.0, 0.0});
     }
+    LinkFrames tfk;
+    for (std::size_t f = 0; f < src.frames.size(); ++f) {
+      forward_kinematics(src.skeleton, src.frames[f], sfk);
+      forward_kinematics(target, out.frames[f], tfk);
+      const Vec3 src_root = sfk.joint_pos[static_cast<std::size_t>(source_of[0])];
+      for (std::size_t e = 0; e < pairs.size(); ++e) {
+        const Vec3 want = scale * (sfk.joint_pos[static_cast<std::size_t>(pairs[e].second)] - src_root);
+        const Vec3 got = tfk.joint_pos[static_cast<std::size_t>(pairs[e].first)] - tfk.joint_pos[0];
+        const double err = (want - got).norm();
+        report->effectors[e].mean += err;
+        report->effectors[e].max = std::max(report->effectors[e].max, err);
+      }
+    }
+    for (EffectorError& e : report->effectors) e.mean /= static_cast<double>(std::max<std::size_t>(1, src.frames.size()));
   }
   return out;
 }

@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "core/error.hpp"
 #include "motion/kinematics.hpp"
+#include "motion/mirror.hpp"
 
 namespace mimic {
 namespace {
@@ -23,8 +25,22 @@ std::string escape(const std::string& s) {
 }
 
 // Lines from each joint to its parent and to its sites, projected by `proj`.
+// Joints on the character's left: of each mirror pair, the one on the +Y side at rest.
+std::vector<bool> left_side(const Skeleton& sk) {
+  std::vector<bool> left(sk.joints.size(), false);
+  try {
+    const std::vector<int> twin = mirror_map(sk);
+    const LinkFrames rest = forward_kinematics(sk, rest_pose(sk));
+    for (std::size_t j = 0; j < sk.joints.size(); ++j)
+      left[j] = twin[j] != static_cast<int>(j) && rest.joint_pos[j].y() > rest.joint_pos[static_cast<std::size_t>(twin[j])].y();
+  } catch (const Error&) {
+    // No consistent left/right pairs: one colour.
+  }
+  return left;
+}
+
 template <class Proj>
-std::string stick_figure(const Skeleton& sk, const LinkFrames& fk, Proj proj) {
+std::string stick_figure(const Skeleton& sk, const std::vector<bool>& left, const LinkFrames& fk, Proj proj) {
   std::string s;
   auto line = [&](const Vec3& a, const Vec3& b, const char* colour) {
     const auto [x1, y1] = proj(a);
@@ -32,11 +48,8 @@ std::string stick_figure(const Skeleton& sk, const LinkFrames& fk, Proj proj) {
     s += fmt::format("<line x1='{:.1f}' y1='{:.1f}' x2='{:.1f}' y2='{:.1f}' ", x1, y1, x2, y2);
     s += std::string("stroke='") + colour + "' stroke-width='3' stroke-linecap='round'/>\n";
   };
-  for (std::size_t j = 1; j < sk.joints.size(); ++j) {
-    const std::string& n = sk.joints[j].name;
-    const bool left = n.find("left") != std::string::npos || n.find("Left") != std::string::npos || (n.size() > 1 && n[0] == 'l' && n != "lowerback" && n != "lowerneck");
-    line(fk.joint_pos[static_cast<std::size_t>(sk.joints[j].parent)], fk.joint_pos[j], left ? "#d9534f" : "#2c6fbb");
-  }
+  for (std::size_t j = 1; j < sk.joints.size(); ++j)
+    line(fk.joint_pos[static_cast<std::size_t>(sk.joints[j].parent)], fk.joint_pos[j], left[j] ? "#d9534f" : "#2c6fbb");
   for (std::size_t i = 0; i < sk.sites.size(); ++i) line(fk.joint_pos[static_cast<std::size_t>(sk.sites[i].joint)], fk.site_pos[i], "#777");
   return s;
 }
@@ -45,6 +58,7 @@ std::string stick_figure(const Skeleton& sk, const LinkFrames& fk, Proj proj) {
 
 std::string clip_picture_svg(const Clip& clip, const ClipPictureOptions& opts) {
   const int panels = std::max(1, std::min(opts.panels, clip.num_frames()));
+  const std::vector<bool> is_left = left_side(clip.skeleton);
   // Each panel is drawn in its frame's heading frame: side view = facing right.
   std::vector<LinkFrames> fks;
   std::vector<HeadingFrame> headings;
@@ -86,10 +100,10 @@ std::string clip_picture_svg(const Clip& clip, const ClipPictureOptions& opts) {
       svg += fmt::format("<line x1='{:.1f}' y1='{:.1f}' x2='{:.1f}' y2='{:.1f}' stroke='#bbb'/>\n", cx - pw / 2 + 4, base, cx + pw / 2 - 4, base);
       auto proj = [&](const Vec3& p) {
         const Vec3 l = hf.to_local(p);
-        const double h = view == 0 ? l.x() : -l.y();
+        const double h = view == 0 ? l.x() : l.y();  // front view: the character's left on our right
         return std::pair<double, double>{cx + h * scale, base - l.z() * scale};
       };
-      svg += stick_figure(clip.skeleton, fk, proj);
+      svg += stick_figure(clip.skeleton, is_left, fk, proj);
     }
   }
   svg += fmt::format("<text x='8' y='{:.0f}'>side view (facing right) above, front view below; {} frames evenly spaced</text>\n",
