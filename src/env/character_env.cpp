@@ -11,8 +11,27 @@ InitState init_state_from_clip(const Clip& clip, double t) {
   return InitState{std::move(pose), std::move(vel), t};
 }
 
+namespace {
+
+// The character's model plus the terrain's ground and the projectile pool.
+MjcfOptions model_options(const Terrain& terrain, const CharacterEnvConfig& cfg) {
+  MjcfOptions opts;
+  terrain.add_to(opts);
+  ProjectileLauncher::add_to(opts, cfg.projectiles, cfg.sim.control_hz);
+  return opts;
+}
+
+}  // namespace
+
 CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& cfg, std::shared_ptr<const Clip> reference)
-    : cfg_(cfg), world_(ch, cfg.sim), reference_(std::move(reference)), obs_(world_, cfg.observations, reference_ != nullptr) {
+    : cfg_(cfg),
+      terrain_(cfg.terrain),
+      world_(ch, cfg.sim, model_options(terrain_, cfg)),
+      reference_(std::move(reference)),
+      obs_(world_, cfg.observations, reference_ != nullptr),
+      pusher_(world_, cfg.pushes) {
+  terrain_.install(world_.model());
+  if (cfg.projectiles.enabled) launcher_ = std::make_unique<ProjectileLauncher>(world_, cfg.projectiles);
   const Skeleton& sk = ch.skeleton;
   if (reference_ && reference_->skeleton.num_joints() != sk.num_joints())
     throw Error("reference clip '" + reference_->name + "' does not fit character '" + ch.name + "'");
@@ -31,6 +50,13 @@ CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& c
       fall_joints_.push_back(j);
     }
   }
+}
+
+void CharacterEnv::set_pushes(std::vector<PushSpec> pushes) {
+  Pusher next(world_, pushes);
+  pusher_.clear(world_);  // no force of the old pushes may stay behind
+  pusher_ = std::move(next);
+  cfg_.pushes = std::move(pushes);
 }
 
 Pose CharacterEnv::targets_from_action(const Eigen::VectorXd& a) const {
@@ -61,18 +87,26 @@ Pose CharacterEnv::targets_from_action(const Eigen::VectorXd& a) const {
 }
 
 Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
-  if (init_sampler_) return reset(init_sampler_(rng));
-  if (reference_) return reset(init_state_from_clip(*reference_, 0.0));
-  // Standing: the rest pose with the lowest body point on the floor.
-  const CharacterModel& ch = world_.character();
-  InitState s{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3)), PoseVelocity{}, 0.0};
-  s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  InitState s;
+  if (init_sampler_) {
+    s = init_sampler_(rng);
+  } else if (reference_) {
+    s = init_state_from_clip(*reference_, 0.0);
+  } else {
+    // Standing: the rest pose with the lowest body point on the floor (every terrain is flat at
+    // the origin).
+    const CharacterModel& ch = world_.character();
+    s = InitState{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3)), PoseVelocity{}, 0.0};
+    s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  }
+  if (launcher_) launcher_->reseed(rng());
   return reset(s);
 }
 
 Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   world_.set_state(init.pose, &init.velocity);
   world_.set_pd_targets(init.pose);
+  if (launcher_) launcher_->reset(world_);
   time_ = init.time;
   elapsed_ = 0.0;
   history_.clear();
@@ -82,7 +116,7 @@ Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
 
 Eigen::VectorXd CharacterEnv::observe() {
   Eigen::VectorXd out;
-  obs_.build(ObservationContext{&world_, &history_, reference_.get(), time_}, out);
+  obs_.build(ObservationContext{&world_, &history_, reference_.get(), time_, &terrain_}, out);
   return out;
 }
 
@@ -99,8 +133,11 @@ Termination CharacterEnv::check_termination() const {
 
 StepResult CharacterEnv::step(const Eigen::VectorXd& action) {
   world_.set_pd_targets(targets_from_action(action));
-  world_.step();
   const double dt = 1.0 / cfg_.sim.control_hz;
+  pusher_.apply(world_, elapsed_, dt);
+  if (launcher_) launcher_->before_step(world_);
+  world_.step();
+  if (launcher_) launcher_->after_step(world_);
   time_ += dt;
   elapsed_ += dt;
   history_.push_back(world_.link_frames());

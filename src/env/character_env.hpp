@@ -1,11 +1,14 @@
 #pragma once
 // A simulated character as an environment: actions are PD targets, observations are built by
 // name (observations.hpp), episodes end on falls (chosen bodies touching the ground), at a time
-// limit, or at the end of a non-cyclic reference clip. Tasks add reward terms.
+// limit, or at the end of a non-cyclic reference clip. Tasks add reward terms. The ground is a
+// Terrain (sim/terrain.hpp); pushes and projectiles (sim/perturbation.hpp) perturb the character.
 #include <functional>
 #include <memory>
 
 #include "env/observations.hpp"
+#include "sim/perturbation.hpp"
+#include "sim/terrain.hpp"
 
 namespace mimic {
 
@@ -23,6 +26,9 @@ struct CharacterEnvConfig {
   std::vector<std::string> fall_links;
   bool early_termination = true;
   double max_seconds = 20.0;  // TimeLimit
+  TerrainSpec terrain;             // flat by default; every kind starts flat around the origin
+  std::vector<PushSpec> pushes;    // times from each episode's start
+  ProjectileSpec projectiles;      // seed 004's projectile test when enabled
 };
 
 // Where an episode starts: a pose, its velocities, and the time on the reference clip.
@@ -50,6 +56,8 @@ class CharacterEnv : public Env {
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
   void add_reward_term(std::string name, RewardTerm term) { rewards_.emplace_back(std::move(name), std::move(term)); }
+  // Replaces the pushes (e.g. new random pushes per episode); throws Error on an unknown link.
+  void set_pushes(std::vector<PushSpec> pushes);
 
   // PD targets an action stands for.
   Pose targets_from_action(const Eigen::VectorXd& action) const;
@@ -59,12 +67,17 @@ class CharacterEnv : public Env {
   double time() const { return time_; }  // on the reference clip: init time + elapsed
   double elapsed() const { return elapsed_; }
   const CharacterEnvConfig& config() const { return cfg_; }
+  const Terrain& terrain() const { return terrain_; }
+  // The projectile launcher (null unless config().projectiles.enabled); its stats are per episode.
+  const ProjectileLauncher* projectiles() const { return launcher_.get(); }
+  ProjectileLauncher* projectiles() { return launcher_.get(); }
 
  private:
   Eigen::VectorXd observe();
   Termination check_termination() const;
 
   CharacterEnvConfig cfg_;
+  Terrain terrain_;
   World world_;
   std::shared_ptr<const Clip> reference_;
   ObservationBuilder obs_;
@@ -73,6 +86,8 @@ class CharacterEnv : public Env {
   std::deque<LinkFrames> history_;
   std::vector<std::pair<std::string, RewardTerm>> rewards_;
   InitSampler init_sampler_;
+  Pusher pusher_;
+  std::unique_ptr<ProjectileLauncher> launcher_;
   double time_ = 0.0, elapsed_ = 0.0;
 };
 

@@ -9,7 +9,7 @@
 namespace mimic {
 namespace {
 
-const std::vector<std::string> kKnown = {"full_state", "egocentric", "links", "link_velocities", "phase"};
+const std::vector<std::string> kKnown = {"full_state", "egocentric", "links", "link_velocities", "phase", "height_map"};
 
 // Appends to `out` at `k` (a running index).
 struct Writer {
@@ -35,6 +35,8 @@ ObservationBuilder::ObservationBuilder(const World& world, const ObservationConf
   }
   if (cfg.names.empty()) throw Error("observations: at least one observation must be named");
   if (cfg.link_history < 1 || cfg.link_history > 64) throw Error("observations: link_history must be 1..64");
+  if (cfg.height_map_size < 1 || cfg.height_map_size > 256 || !(cfg.height_map_spacing > 0) || !std::isfinite(cfg.height_map_ahead))
+    throw Error("observations: height_map_size must be 1..256 and height_map_spacing positive");
   // Egocentric points: end effectors and the highest joint at rest (the head).
   const LinkFrames rest = forward_kinematics(skeleton_, rest_pose(skeleton_));
   int head = 0;
@@ -68,7 +70,14 @@ int ObservationBuilder::part_size(const std::string& name) const {
   if (name == "egocentric") return 9 + 3 * static_cast<int>(ego_points_.size());
   if (name == "links") return cfg_.link_history * 7 * nj;
   if (name == "link_velocities") return 6 * nj;
+  if (name == "height_map") return cfg_.height_map_size * cfg_.height_map_size;
   return 1;  // phase
+}
+
+Vec3 ObservationBuilder::height_map_point(const HeadingFrame& heading, int i, int j) const {
+  const double c = 0.5 * (cfg_.height_map_size - 1);
+  const Vec3 local(cfg_.height_map_ahead + (i - c) * cfg_.height_map_spacing, (j - c) * cfg_.height_map_spacing, 0.0);
+  return heading.origin + heading.yaw * local;
 }
 
 void ObservationBuilder::build(const ObservationContext& ctx, Eigen::VectorXd& out) const {
@@ -123,6 +132,12 @@ void ObservationBuilder::build(const ObservationContext& ctx, Eigen::VectorXd& o
         w.put(heading.dir_to_local(Vec3(vel[3], vel[4], vel[5])));
         w.put(heading.dir_to_local(Vec3(vel[0], vel[1], vel[2])));
       }
+    } else if (name == "height_map") {
+      for (int i = 0; i < cfg_.height_map_size; ++i)
+        for (int j = 0; j < cfg_.height_map_size; ++j) {
+          const Vec3 p = height_map_point(heading, i, j);
+          w.put((ctx.terrain ? ctx.terrain->height(p.x(), p.y()) : 0.0) - pose.root_pos.z());
+        }
     } else {  // phase
       const double dur = ctx.reference->duration();
       w.put(dur > 0 ? std::fmod(std::max(0.0, ctx.time), dur) / dur : 0.0);

@@ -1,0 +1,210 @@
+// Terrain kinds against MuJoCo (ray casts onto the compiled model) and by hand, and the
+// "height_map" observation in the heading frame. Uses the built-in humanoid: no shared data.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <memory>
+
+#include "core/error.hpp"
+#include "env/character_env.hpp"
+#include "motion/builtin.hpp"
+#include "motion/deepmimic.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+const CharacterModel& builtin() {
+  static const CharacterModel ch = CharacterModel::from_skeleton(builtin_humanoid(), "builtin");
+  return ch;
+}
+
+TerrainSpec spec_of(TerrainKind kind) {
+  TerrainSpec s;
+  s.kind = kind;
+  s.seed = 7;
+  return s;
+}
+
+// A compiled World standing on `terrain`, its character lifted far above the ground so that
+// rays from z = 20 only meet the terrain.
+std::unique_ptr<World> world_on(const Terrain& terrain) {
+  MjcfOptions opts;
+  terrain.add_to(opts);
+  auto w = std::make_unique<World>(builtin(), SimConfig{}, opts);
+  terrain.install(w->model());
+  w->set_state(rest_pose(builtin().skeleton, Vec3(0, 0, 50)));
+  return w;
+}
+
+// Height of the first surface below (x, y, 20) according to MuJoCo, or NaN if none.
+double ray_height(const World& w, double x, double y) {
+  const mjtNum from[3] = {x, y, 20.0}, down[3] = {0, 0, -1};
+  int geom = -1;
+  const mjtNum dist = mj_ray(w.model(), w.data(), from, down, nullptr, 1, -1, &geom);
+  return dist < 0 ? std::nan("") : 20.0 - dist;
+}
+
+}  // namespace
+
+TEST(Terrain, KindNamesRoundTrip) {
+  for (TerrainKind k : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField})
+    EXPECT_EQ(terrain_kind_from_string(to_string(k)), k);
+  EXPECT_THROW(terrain_kind_from_string("lava"), Error);
+}
+
+TEST(Terrain, EveryKindMatchesMuJoCoRayCasts) {
+  for (TerrainKind kind : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField}) {
+    TerrainSpec s = spec_of(kind);
+    s.slope_segments = kind == TerrainKind::Slope ? 3 : 1;  // random up and down inclines
+    const Terrain terrain(s);
+    const auto w = world_on(terrain);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> ux(-s.behind - 2, s.ahead + 2), uy(-s.width / 2 - 2, s.width / 2 + 2);
+    double worst = 0;
+    for (int i = 0; i < 400; ++i) {
+      const double x = i < 40 ? 0.05 * i - 1.0 : ux(rng), y = i < 40 ? 0.3 : uy(rng);  // the start zone, then anywhere
+      const double ray = ray_height(*w, x, y);
+      ASSERT_FALSE(std::isnan(ray)) << to_string(kind) << " at " << x << ", " << y;
+      worst = std::max(worst, std::abs(ray - terrain.height(x, y)));
+      if (i < 40) {
+        EXPECT_NEAR(terrain.height(x, y), 0.0, 1e-6) << to_string(kind) << ": the start zone is flat";  // float samples
+      }
+    }
+    EXPECT_LT(worst, 1e-3) << to_string(kind);
+  }
+}
+
+TEST(Terrain, SlopeHeightIsDistanceTimesTangent) {
+  TerrainSpec s = spec_of(TerrainKind::Slope);
+  s.slope_deg = 12.0;
+  const Terrain up(s);
+  const double t = std::tan(deg_to_rad(12.0));
+  EXPECT_NEAR(up.height(1.5, 3.0), 0.0, 1e-9);                       // before the incline
+  EXPECT_NEAR(up.height(7.0, -4.0), (7.0 - s.start_zone) * t, 1e-6);  // on it
+  EXPECT_NEAR(up.height(30.0, 0.0), s.slope_length * t, 1e-6);        // the plateau
+  s.slope_deg = -8.0;
+  const Terrain down(s);
+  EXPECT_NEAR(down.height(5.0, 1.0), -3.0 * std::tan(deg_to_rad(8.0)), 1e-6);
+  EXPECT_NEAR(down.base_height(), -s.slope_length * std::tan(deg_to_rad(8.0)), 1e-6);
+  // MuJoCo agrees at the same place.
+  EXPECT_NEAR(ray_height(*world_on(up), 7.0, -4.0), (7.0 - s.start_zone) * t, 1e-3);
+}
+
+TEST(Terrain, GapIsAHole) {
+  const TerrainSpec s = spec_of(TerrainKind::Gaps);
+  const Terrain gaps(s);
+  const auto w = world_on(gaps);
+  const double gap = s.start_zone + s.gap_width / 2;                    // the middle of the first gap
+  const double platform = s.start_zone + s.gap_width + s.gap_spacing / 2;
+  for (double y : {-3.0, 0.0, 4.0}) {
+    EXPECT_NEAR(ray_height(*w, gap, y), -s.gap_depth, 1e-6);  // the floor far below
+    EXPECT_NEAR(ray_height(*w, platform, y), 0.0, 1e-6);
+    EXPECT_NEAR(gaps.height(gap, y), -s.gap_depth, 1e-12);
+  }
+  // The second gap begins one gap and one platform later.
+  EXPECT_NEAR(ray_height(*w, gap + s.gap_width + s.gap_spacing, 0.0), -s.gap_depth, 1e-6);
+}
+
+TEST(Terrain, StairsRiseByStepHeightPerStepDepth) {
+  const TerrainSpec s = spec_of(TerrainKind::Stairs);
+  const Terrain stairs(s);
+  const auto w = world_on(stairs);
+  for (int k = 0; k < s.step_count; ++k) {
+    const double x = s.start_zone + (k + 0.5) * s.step_depth;  // middle of step k
+    EXPECT_NEAR(stairs.height(x, 0.0), (k + 1) * s.step_height, 1e-12) << "step " << k;
+    EXPECT_NEAR(ray_height(*w, x, 1.0), (k + 1) * s.step_height, 1e-6) << "step " << k;
+  }
+  // The landing, then down again to the ground.
+  const double top = s.start_zone + s.step_count * s.step_depth;
+  EXPECT_NEAR(ray_height(*w, top + s.landing / 2, 0.0), s.step_count * s.step_height, 1e-6);
+  EXPECT_NEAR(ray_height(*w, top + s.landing + 0.5 * s.step_depth, 0.0), (s.step_count - 1) * s.step_height, 1e-6);
+  EXPECT_NEAR(ray_height(*w, top + s.landing + s.step_count * s.step_depth + 0.5, 0.0), 0.0, 1e-6);
+}
+
+TEST(Terrain, HeightFieldIsBumpyAndDeterministicForASeed) {
+  const TerrainSpec s = spec_of(TerrainKind::HeightField);
+  const Terrain a(s), b(s);
+  TerrainSpec other = s;
+  other.seed = 8;
+  const Terrain c(other);
+  double sum = 0, sum2 = 0, differ = 0;
+  int n = 0;
+  for (double x = 3.05; x < 20; x += 0.37) {
+    for (double y = -8.05; y < 8; y += 0.41, ++n) {
+      const double h = a.height(x, y);
+      EXPECT_EQ(h, b.height(x, y));
+      EXPECT_GE(h, 0.0);
+      EXPECT_LE(h, s.roughness + 1e-9);
+      differ = std::max(differ, std::abs(h - c.height(x, y)));
+      sum += h, sum2 += h * h;
+    }
+  }
+  const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
+  EXPECT_GT(sd, 0.1 * s.roughness);  // not flat
+  EXPECT_GT(differ, 0.3 * s.roughness);  // another seed, other bumps
+}
+
+TEST(Terrain, RejectsBadSpecs) {
+  auto bad = [](auto edit) {
+    TerrainSpec s;
+    edit(s);
+    return s;
+  };
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::Slope, s.slope_deg = 75; })), Error);
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::Gaps, s.gap_count = 100; })), Error);
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::Stairs, s.step_height = 0; })), Error);
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::HeightField, s.roughness = -1; })), Error);
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.width = 0; })), Error);
+  // A model built without the terrain's height field cannot take its data.
+  const Terrain hf(spec_of(TerrainKind::HeightField));
+  World plain(builtin());
+  EXPECT_THROW(hf.install(plain.model()), Error);
+}
+
+TEST(TerrainEnv, CharacterStartsStandingOnEveryKind) {
+  // DeepMimic's humanoid stands with zero actions; on every kind it starts on flat ground.
+  std::filesystem::path shared_;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_);
+  const auto dir = test::shared_data() / "deepmimic/characters";
+  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+  for (TerrainKind kind : {TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField}) {
+    CharacterEnvConfig cfg;
+    cfg.terrain = spec_of(kind);
+    CharacterEnv env(ch, cfg);
+    std::mt19937_64 rng(1);
+    env.reset(rng);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
+    for (int i = 0; i < 60; ++i) ASSERT_FALSE(env.step(zero).done()) << to_string(kind);
+    EXPECT_GT(env.world().pose().root_pos.z(), 0.95 * ch.rest_root_height()) << to_string(kind);
+  }
+}
+
+TEST(TerrainEnv, HeightMapIsTheTerrainAroundTheCharacterInItsHeadingFrame) {
+  CharacterEnvConfig cfg;
+  cfg.terrain = spec_of(TerrainKind::HeightField);
+  cfg.observations.names = {"height_map"};
+  cfg.observations.height_map_size = 7;
+  cfg.observations.height_map_spacing = 0.3;
+  cfg.observations.height_map_ahead = 0.5;
+  CharacterEnv env(builtin(), cfg);
+  ASSERT_EQ(env.observation_size(), 49);
+  const Terrain& t = env.terrain();
+  const Vec3 root(6.2, -2.7, 1.4);
+  InitState s{rest_pose(builtin().skeleton, root), PoseVelocity{}, 0.0};
+  s.velocity.joint_ang.assign(builtin().skeleton.joints.size(), Vec3::Zero());
+  const Eigen::VectorXd facing_x = env.reset(s);
+  s.pose.rot[0] = axis_rotation('z', kPi / 2);  // turned left: facing +y
+  const Eigen::VectorXd facing_y = env.reset(s);
+  for (int i = 0; i < 7; ++i) {
+    for (int j = 0; j < 7; ++j) {
+      const double ahead = 0.5 + (i - 3) * 0.3, left = (j - 3) * 0.3;
+      // Facing +x: ahead is +x, left is +y. Facing +y: ahead is +y, left is -x.
+      EXPECT_NEAR(facing_x[i * 7 + j], t.height(root.x() + ahead, root.y() + left) - root.z(), 1e-9);
+      EXPECT_NEAR(facing_y[i * 7 + j], t.height(root.x() - left, root.y() + ahead) - root.z(), 1e-9);
+    }
+  }
+  EXPECT_GT((facing_x - facing_y).cwiseAbs().maxCoeff(), 0.02);  // the bumps differ by direction
+}
