@@ -18,6 +18,11 @@ MjcfOptions model_options(const Terrain& terrain, const CharacterEnvConfig& cfg)
   MjcfOptions opts;
   terrain.add_to(opts);
   ProjectileLauncher::add_to(opts, cfg.projectiles, cfg.sim.control_hz);
+  if (cfg.terrain.kind != TerrainKind::Flat || cfg.projectiles.enabled) {
+    // Height fields and cube pools make many contacts (nconmax 200 overflowed in tests).
+    opts.max_contacts = 1000;
+    opts.max_constraints = 4000;
+  }
   return opts;
 }
 
