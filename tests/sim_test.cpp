@@ -219,3 +219,23 @@ TEST(SimCharacter, BodyGeneratedFromCmuSegmentLengths) {
   }
   EXPECT_LT(worst, 0.3) << worst_joint;  // measured 0.22 at the stance ankle: frame 0 starts 2 cm into the floor
 }
+
+TEST(SimCharacter, DogMatchesItsFileAndTrotsOnTheFloor) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/dog3d.txt", p);
+  const auto dir = test::shared_data() / "deepmimic";
+  const CharacterModel dog = CharacterModel::from_deepmimic(dir / "characters/dog3d.txt", dir / "characters/dog3d_ctrl.txt");
+  World w(dog);
+  EXPECT_NEAR(mj_getTotalmass(w.model()), 29.25, 0.01 * 29.25);  // the file's body masses
+  w.set_state(rest_pose(dog.skeleton, Vec3(0, 0, 1)));
+  const auto [lo, hi] = geom_z_range(w);
+  EXPECT_NEAR(hi - lo, dog.rest_height(), 0.01 * dog.rest_height());
+  // Kinematic trot: the paws reach the floor (within 3 cm) and never sink below it by more.
+  const Clip trot = load_deepmimic_motion(dir / "motions/dog3d_trot.txt", dog.skeleton);
+  double lowest = 1e9;
+  for (const Pose& pose : trot.frames) {
+    w.set_state(pose);
+    lowest = std::min(lowest, geom_z_range(w).first);
+  }
+  EXPECT_NEAR(lowest, 0.0, 0.03);
+}
