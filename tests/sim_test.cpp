@@ -184,6 +184,8 @@ TEST(SimWorld, BadModelsAndRatesAreClearErrors) {
   Pose wrong;
   wrong.rot.assign(3, Quat::Identity());
   EXPECT_THROW(w.set_state(wrong), Error);
+  const PoseVelocity no_joints;  // velocities must cover every joint too
+  EXPECT_THROW(w.set_state(rest_pose(ch.skeleton), &no_joints), Error);
 }
 
 // Seed 000 built its CMU humanoid from a subject's segment lengths; so does from_skeleton.

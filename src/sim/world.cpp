@@ -52,6 +52,9 @@ double World::time() const { return d_->time; }
 void World::set_state(const Pose& pose, const PoseVelocity* vel) {
   const Skeleton& sk = ch_.skeleton;
   if (pose.rot.size() != sk.joints.size()) throw Error("set_state: pose has the wrong number of joints");
+  if (vel && vel->joint_ang.size() != sk.joints.size())
+    throw Error("set_state: velocities have " + std::to_string(vel->joint_ang.size()) + " joints, the character " +
+                std::to_string(sk.joints.size()));
   mj_resetData(m_, d_);
   for (std::size_t j = 0; j < sk.joints.size(); ++j) {
     const int a = qpos_[j], v = dof_[j];
