@@ -43,7 +43,7 @@ void World::init(const std::string& mjcf) {
     qpos_.push_back(jid < 0 ? -1 : m_->jnt_qposadr[jid]);
     dof_.push_back(jid < 0 ? -1 : m_->jnt_dofadr[jid]);
   }
-  target_.assign(sk.joints.size(), Quat::Identity());
+  set_targets(std::vector<Quat>(sk.joints.size(), Quat::Identity()));
   mj_forward(m_, d_);
 }
 
@@ -80,7 +80,7 @@ void World::set_state(const Pose& pose, const PoseVelocity* vel) {
       case JointType::Fixed: break;
     }
   }
-  target_ = pose.rot;
+  set_targets(pose.rot);
   mj_forward(m_, d_);
 }
 
@@ -108,7 +108,15 @@ Pose World::pose() const {
 
 void World::set_pd_targets(const Pose& targets) {
   if (targets.rot.size() != ch_.skeleton.joints.size()) throw Error("set_pd_targets: wrong number of joints");
-  target_ = targets.rot;
+  set_targets(targets.rot);
+}
+
+void World::set_targets(const std::vector<Quat>& rot) {
+  // Revolute angles once per control step, not once per physics step.
+  target_ = rot;
+  target_angle_.assign(rot.size(), 0.0);
+  for (std::size_t j = 1; j < rot.size(); ++j)
+    if (ch_.skeleton.joints[j].type == JointType::Revolute) target_angle_[j] = revolute_angle(ch_.skeleton.joints[j], rot[j]);
 }
 
 void World::apply_pd() {
@@ -128,7 +136,7 @@ void World::apply_pd() {
       for (int k = 0; k < 3; ++k) d_->qfrc_applied[v + k] = std::clamp(kp * err[k], -lim, lim);
     } else if (jt.type == JointType::Revolute) {
       const double predicted = d_->qpos[a] + dt * d_->qvel[v];
-      const double err = revolute_angle(jt, target_[j]) - predicted;
+      const double err = target_angle_[j] - predicted;
       d_->qfrc_applied[v] = std::clamp(kp * err, -lim, lim);
     }
   }

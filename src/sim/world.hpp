@@ -56,6 +56,7 @@ class World {
  private:
   void init(const std::string& mjcf);
   void apply_pd();
+  void set_targets(const std::vector<Quat>& rot);
 
   CharacterModel ch_;
   SimConfig cfg_;
@@ -64,6 +65,7 @@ class World {
   mjData_* d_ = nullptr;
   std::vector<int> body_, qpos_, dof_;  // per skeleton joint; -1 for none
   std::vector<Quat> target_;
+  std::vector<double> target_angle_;  // revolute joints' target angles (from target_)
 };
 
 }  // namespace mimic
