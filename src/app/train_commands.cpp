@@ -1,0 +1,81 @@
+// mimic train CONFIG.yaml [-o RUN] [--resume]; mimic bench train
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <thread>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "learn/train_bench.hpp"
+#include "learn/trainer.hpp"
+
+namespace mimic::app {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void request_stop(int) { g_stop.store(true); }
+
+std::string cell(const IterationMetrics& m, const char* name, const char* format) {
+  const double v = m.get(name);
+  return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string("-");
+}
+
+}  // namespace
+
+void add_train_commands(CLI::App& app) {
+  struct Args {
+    std::filesystem::path config, out;
+    bool resume = false;
+    int iterations = 0, threads = -1;
+    TrainBenchOptions bench;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* train = app.add_subcommand("train", "train a policy with PPO from a YAML config (see docs/training.md)");
+  train->add_option("config", args->config, "training config (.yaml)")->required()->check(CLI::ExistingFile);
+  train->add_option("-o,--out", args->out, "run directory (default: runs/<config name>)");
+  train->add_flag("--resume", args->resume, "continue the run in the run directory from its checkpoint");
+  train->add_option("--iterations", args->iterations, "override the config's iteration count")->check(CLI::PositiveNumber);
+  train->add_option("--threads", args->threads, "override collect.threads (0: every core)")->check(CLI::NonNegativeNumber);
+  train->callback([args] {
+    TrainConfig cfg = load_train_config(args->config);
+    if (args->iterations > 0) cfg.iterations = args->iterations;
+    if (args->threads >= 0) cfg.collect.threads = args->threads > 0 ? args->threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    TrainOptions opts;
+    opts.run_dir = args->out.empty() ? std::filesystem::path("runs") / args->config.stem() : args->out;
+    opts.resume = args->resume;
+    opts.stop_requested = [] { return g_stop.load(); };
+    opts.on_iteration = [](const IterationMetrics& m) {
+      spdlog::info("iter {:>5}  samples {:>9}  return {:>9}  len {:>6}  kl {:>8}  ent {:>7}  ev {:>6}  {:>7} samples/s",
+                   m.iteration, cell(m, "samples", "{:.0f}"), cell(m, "return", "{:.2f}"), cell(m, "episode_length", "{:.0f}"),
+                   cell(m, "kl", "{:.4f}"), cell(m, "entropy", "{:.2f}"), cell(m, "explained_variance", "{:.2f}"),
+                   cell(m, "samples_per_s", "{:.0f}"));
+    };
+    std::signal(SIGINT, request_stop);
+    std::signal(SIGTERM, request_stop);
+    Trainer trainer(cfg, opts);
+    spdlog::info("{} {} in {} ({} envs, {} threads, {} samples per iteration, input {}, actions {})",
+                 args->resume ? "resuming at iteration" : "training from iteration", trainer.iteration(), opts.run_dir.string(),
+                 cfg.collect.envs, cfg.collect.threads, cfg.collect.samples, trainer.input_size(), trainer.action_size());
+    trainer.run();
+    spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stop.load() ? "stopped" : "done", trainer.iteration(),
+                 trainer.samples(), (opts.run_dir / "checkpoint.pt").string());
+  });
+
+  CLI::App* bench = app.add_subcommand("bench", "throughput figures");
+  bench->require_subcommand(1);
+  CLI::App* bench_train = bench->add_subcommand(
+      "train", "end-to-end PPO samples/s on the humanoid (seed 004 Table 1 sizes) beside the simulation-only rate");
+  bench_train->add_option("--threads", args->bench.threads, "worker threads (a list: 1,2)")->delimiter(',')->capture_default_str();
+  bench_train->add_option("--iterations", args->bench.iterations, "timed iterations after one warm-up")->capture_default_str()->check(CLI::PositiveNumber);
+  bench_train->add_option("--samples", args->bench.samples, "samples per iteration (PPO buffer)")->capture_default_str()->check(CLI::PositiveNumber);
+  bench_train->add_option("--envs", args->bench.envs, "environments")->capture_default_str()->check(CLI::PositiveNumber);
+  bench_train->callback([args] {
+    const std::vector<TrainBenchResult> results = run_train_benchmark(args->bench, [](const std::string& line) { spdlog::info("{}", line); });
+    fmt::print("{}", format_train_benchmark(args->bench, results));
+  });
+}
+
+}  // namespace mimic::app

@@ -1,0 +1,93 @@
+#include "env/env_factory.hpp"
+
+#include "core/config_section.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "env/humanoid_forward.hpp"
+#include "env/planar_walker.hpp"
+#include "motion/clip_io.hpp"
+#include "env/reacher_arm.hpp"
+
+namespace mimic {
+
+namespace {
+
+EnvFactory planar_walker(ConfigSection& s) {
+  PlanarWalkerConfig c;
+  c.max_steps = static_cast<int>(s.integer("max_steps", c.max_steps, 1, 100'000'000));
+  c.frame_skip = static_cast<int>(s.integer("frame_skip", c.frame_skip, 1, 1000));
+  c.timestep = s.number("timestep", c.timestep, 1e-5, 0.1);
+  c.reset_noise = s.number("reset_noise", c.reset_noise, 0, 1);
+  c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
+  return [c] { return std::make_unique<PlanarWalkerEnv>(c); };
+}
+
+EnvFactory reacher(ConfigSection& s) {
+  const long links = s.integer("links", 2, 2, 3);
+  ReacherConfig c = links == 2 ? ReacherConfig::two_link() : ReacherConfig::three_link();
+  c.observation = s.choice("observation", c.observation, {"full", "ee_to_target"});
+  c.max_steps = static_cast<int>(s.integer("max_steps", c.max_steps, 1, 100'000'000));
+  c.target_period = s.number("target_period", c.target_period);
+  c.squared_distance = s.boolean("squared_distance", c.squared_distance);
+  c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
+  return [c] { return std::make_unique<ReacherArmEnv>(c); };
+}
+
+// A data path: as given when it exists, else under the shared data directory.
+std::filesystem::path data_path(const std::string& given, const char* key) {
+  const std::filesystem::path p(given);
+  if (std::filesystem::exists(p)) return p;
+  const std::filesystem::path shared = shared_data_dir();
+  if (!shared.empty() && p.is_relative() && std::filesystem::exists(shared / p)) return shared / p;
+  throw Error(std::string("'env.") + key + "': " + given + " not found (also looked under " +
+              (shared.empty() ? std::string("the shared data directory, which is absent: set MIMIC_DATA") : shared.string()) + ")");
+}
+
+EnvFactory humanoid_forward(ConfigSection& s) {
+  HumanoidForwardConfig c;
+  const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
+  const std::string clip_file = s.text("clip", "deepmimic/motions/humanoid3d_walk.txt");
+  c.init = s.choice("init", "mocap", {"mocap", "fixed"}) == "mocap" ? HumanoidForwardConfig::Init::Mocap : HumanoidForwardConfig::Init::FixedPose;
+  c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
+  c.alive_bonus = s.number("alive_bonus", c.alive_bonus, 0, 1e6);
+  c.forward_weight = s.number("forward_weight", c.forward_weight, 0, 1e6);
+  c.target_speed = s.number("target_speed", c.target_speed, 0, 100);
+  c.lateral_weight = s.number("lateral_weight", c.lateral_weight, 0, 1e6);
+  c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
+  c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
+  const std::filesystem::path ch_path = data_path(character, "character");
+  const std::filesystem::path ctrl = ch_path.parent_path() / (ch_path.stem().string() + "_ctrl.txt");
+  auto ch = std::make_shared<const CharacterModel>(
+      CharacterModel::from_deepmimic(ch_path, std::filesystem::exists(ctrl) ? ctrl : std::filesystem::path{}));
+  LoadOptions load;
+  load.character = ch_path;
+  auto clip = std::make_shared<const Clip>(load_motion(data_path(clip_file, "clip"), load));
+  return [ch, clip, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clip, c)); };
+}
+
+}  // namespace
+
+std::string env_names() { return "planar_walker, reacher, humanoid_forward"; }
+
+EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
+  ConfigSection s(reader, env, "env");
+  const std::string name = s.choice("name", "", {"planar_walker", "reacher", "humanoid_forward"});
+  if (name.empty()) reader.fail(env, "'env': missing 'name' (one of " + env_names() + ")");
+  EnvFactory f;
+  try {
+    f = name == "planar_walker" ? planar_walker(s) : name == "reacher" ? reacher(s) : humanoid_forward(s);
+  } catch (const ParseError&) {
+    throw;
+  } catch (const Error& e) {
+    reader.fail(env, e.what());
+  }
+  s.finish();
+  try {
+    (void)f();
+  } catch (const Error& e) {
+    reader.fail(env, "'env' (" + name + "): " + e.what());
+  }
+  return f;
+}
+
+}  // namespace mimic

@@ -1,0 +1,125 @@
+#include "env/humanoid_forward.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+InitState place_at_track_start(InitState s) {
+  const Quat undo = heading_rotation(-heading_angle(s.pose.rot[0]));
+  s.pose.root_pos = Vec3(0, 0, s.pose.root_pos.z());
+  s.pose.rot[0] = (undo * s.pose.rot[0]).normalized();
+  // Root velocities are in the world frame; joint velocities are in their own frames and stay.
+  s.velocity.root_lin = undo * s.velocity.root_lin;
+  s.velocity.root_ang = undo * s.velocity.root_ang;
+  return s;
+}
+
+namespace {
+
+// Uniform +-noise on every axis of every non-root joint (revolute angles kept within limits).
+void perturb_joints(Pose& p, const Skeleton& sk, double noise, std::mt19937_64& rng) {
+  if (noise <= 0) return;
+  std::uniform_real_distribution<double> u(-noise, noise);
+  for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+    const Joint& jt = sk.joints[j];
+    if (jt.type == JointType::Spherical) {
+      const double x = u(rng), y = u(rng), z = u(rng);
+      p.rot[j] = (p.rot[j] * rotvec_to_quat(Vec3(x, y, z))).normalized();
+    } else if (jt.type == JointType::Revolute) {
+      double angle = revolute_angle(jt, p.rot[j]) + u(rng);
+      if (!jt.limits.empty()) angle = std::clamp(angle, jt.limits[0].first, jt.limits[0].second);
+      p.rot[j] = Quat(Eigen::AngleAxisd(angle, jt.axis));
+    }
+  }
+}
+
+void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const Clip* clip) {
+  auto fail = [](const std::string& what) { throw Error("humanoid_forward: " + what); };
+  const std::pair<const char*, double> values[] = {
+      {"alive_bonus", cfg.alive_bonus},       {"forward_weight", cfg.forward_weight},
+      {"target_speed", cfg.target_speed},     {"lateral_weight", cfg.lateral_weight},
+      {"control_weight", cfg.control_weight}, {"init_noise", cfg.init_noise}};
+  for (const auto& [name, v] : values)
+    if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
+  if (cfg.init == HumanoidForwardConfig::Init::Mocap && !clip)
+    fail("Mocap initialisation needs a motion clip");
+  if (clip && clip->skeleton.num_joints() != ch.skeleton.num_joints())
+    fail("clip '" + clip->name + "' does not fit character '" + ch.name + "'");
+}
+
+// CharacterEnv does not keep the action or the root's position before a step: this keeps both
+// for the control and forward terms.
+class HumanoidForwardEnv final : public CharacterEnv {
+ public:
+  HumanoidForwardEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg,
+                     const HumanoidForwardConfig& cfg)
+      : CharacterEnv(ch, env_cfg) {
+    const double dt = 1.0 / env_cfg.sim.control_hz;
+    add_reward_term("alive", [bonus = cfg.alive_bonus](const CharacterEnv&) { return bonus; });
+    add_reward_term("forward", [this, dt, w = cfg.forward_weight,
+                                target = cfg.target_speed](const CharacterEnv& env) {
+      const double vx = (env.world().pose().root_pos.x() - x_before_) / dt;
+      return target > 0 ? -w * std::abs(vx - target) : w * vx;
+    });
+    add_reward_term("lateral", [w = cfg.lateral_weight](const CharacterEnv& env) {
+      return -w * std::abs(env.world().pose().root_pos.y());
+    });
+    add_reward_term("control", [this, w = cfg.control_weight](const CharacterEnv&) {
+      double sum = 0;
+      for (const double a : action_) {
+        const double v = std::isfinite(a) ? std::clamp(a, -kPi, kPi) : 0.0;
+        sum += v * v;
+      }
+      return -w * sum;
+    });
+  }
+
+  StepResult step(const Eigen::VectorXd& action) override {
+    action_ = action;
+    x_before_ = world().pose().root_pos.x();
+    return CharacterEnv::step(action);
+  }
+
+ private:
+  Eigen::VectorXd action_;
+  double x_before_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
+                                                        std::shared_ptr<const Clip> clip,
+                                                        const HumanoidForwardConfig& cfg) {
+  check(cfg, ch, clip.get());
+  CharacterEnvConfig env_cfg;
+  env_cfg.observations = cfg.observations;
+  env_cfg.max_seconds = cfg.max_seconds;
+  // The clip is not the env's reference: it only supplies starts and must not end episodes.
+  auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
+  const Skeleton sk = ch.skeleton;
+  const double noise = cfg.init_noise;
+  if (cfg.init == HumanoidForwardConfig::Init::Mocap) {
+    env->set_init_sampler([clip, sk, noise](std::mt19937_64& rng) {
+      std::uniform_real_distribution<double> when(0.0, clip->duration());
+      InitState s = place_at_track_start(init_state_from_clip(*clip, when(rng)));
+      s.time = 0.0;
+      perturb_joints(s.pose, sk, noise, rng);
+      return s;
+    });
+  } else {
+    // Standing like CharacterEnv's default start: the lowest body point just above the floor.
+    const Vec3 root(0, 0, ch.rest_root_height() + 1e-3);
+    env->set_init_sampler([sk, root, noise](std::mt19937_64& rng) {
+      InitState s{rest_pose(sk, root), PoseVelocity{}, 0.0};
+      s.velocity.joint_ang.assign(sk.joints.size(), Vec3::Zero());
+      perturb_joints(s.pose, sk, noise, rng);
+      return s;
+    });
+  }
+  return env;
+}
+
+}  // namespace mimic

@@ -1,0 +1,49 @@
+#pragma once
+// Seed 000's "move forward" RL task (Merel et al. 2017, Figure 4 and supplement): the humanoid
+// on a plane, placed at the origin, rewarded for moving along the track (world +X); 10 s episodes
+// that a fall ends early. Reward terms, per control step:
+//   alive    alive_bonus: the baseline for not having fallen
+//   forward  forward_weight * v_x, v_x the root's mean velocity along +X over the step (its X
+//            displacement / control dt: the instantaneous velocity of a gait is noisy); with
+//            target_speed > 0 the paper's other variant, -forward_weight * |v_x - target_speed|
+//   lateral  -lateral_weight * |y|: the root's distance from the track's centre line y = 0
+//   control  -control_weight * |a|^2 on the action as the environment reads it (clipped to +-pi,
+//            NaN as 0)
+// The experiment is the start of an episode: motion-capture poses (a random time on a clip) versus
+// a fixed engineered pose, both with a little noise on the joints.
+#include <memory>
+
+#include "env/character_env.hpp"
+
+namespace mimic {
+
+struct HumanoidForwardConfig {
+  enum class Init {
+    FixedPose,  // the character's rest pose standing at rest: the engineered start
+    Mocap,      // the pose and velocities at a uniformly random time on the clip
+  };
+  Init init = Init::Mocap;
+  double max_seconds = 10.0;  // TimeLimit
+  double alive_bonus = 1.0;
+  double forward_weight = 1.0;   // per m/s
+  double target_speed = 0.0;     // m/s; 0: as fast as possible
+  double lateral_weight = 0.1;   // per m off the centre line
+  double control_weight = 1e-3;  // per rad^2 of axis-angle PD targets (28 values for humanoid3d)
+  double init_noise = 0.02;      // rad: uniform +- on each joint axis at every start
+  // The policy's input: proprioception, as the paper's RL runs (joint angles and velocities, root
+  // velocity, velocimeter, gyro, uprightness, end effectors). No phase: nothing is tracked.
+  ObservationConfig observations{.names = {"full_state", "egocentric"}};
+};
+
+// The task's environment (actions: axis-angle PD targets). `clip` gives Mocap's starts and must
+// fit `ch`; FixedPose ignores it (it may be null). The clip never ends an episode. Throws Error on
+// a missing or unfitting clip or a negative weight, noise or speed.
+std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
+                                                        std::shared_ptr<const Clip> clip,
+                                                        const HumanoidForwardConfig& cfg = {});
+
+// `s` moved to the start of the track: root over the origin facing +X, its height kept, its
+// velocities turned with it.
+InitState place_at_track_start(InitState s);
+
+}  // namespace mimic

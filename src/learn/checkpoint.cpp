@@ -1,0 +1,172 @@
+// Checkpoints: one LibTorch archive holding the networks, both optimizers (Adam moments or SGD
+// momentum), normalisers, the KL penalty, every random generator, counters and the config text.
+// Written to memory, then atomically to disk; read back with errors naming the file.
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "learn/trainer_impl.hpp"
+
+namespace mimic {
+
+namespace {
+
+constexpr std::int64_t kFormat = 1;
+using torch::serialize::InputArchive;
+using torch::serialize::OutputArchive;
+
+torch::Tensor bytes_tensor(const std::string& s) {
+  return torch::from_blob(const_cast<char*>(s.data()), {static_cast<std::int64_t>(s.size())}, torch::kUInt8).clone();
+}
+std::string tensor_bytes(const torch::Tensor& t) {
+  const torch::Tensor c = t.contiguous();
+  return std::string(reinterpret_cast<const char*>(c.data_ptr<std::uint8_t>()), static_cast<std::size_t>(c.numel()));
+}
+torch::Tensor vec_tensor(const Eigen::VectorXd& v) {
+  return torch::from_blob(const_cast<double*>(v.data()), {v.size()}, torch::kFloat64).clone();
+}
+Eigen::VectorXd tensor_vec(const torch::Tensor& t) {
+  const torch::Tensor c = t.contiguous().to(torch::kFloat64);
+  return Eigen::Map<const Eigen::VectorXd>(c.data_ptr<double>(), c.numel());
+}
+template <class Rng>
+std::string rng_text(const Rng& rng) {
+  std::ostringstream os;
+  os << rng;
+  return os.str();
+}
+template <class Rng>
+void set_rng(Rng& rng, const std::string& text, const std::string& what) {
+  std::istringstream is(text);
+  is >> rng;
+  if (!is) throw Error("generator state '" + what + "' is unreadable");
+}
+
+void write_normalizer(OutputArchive& a, const std::string& key, const RunningNormalizer& n) {
+  OutputArchive sub;
+  sub.write("count", torch::tensor(n.count(), torch::kFloat64));
+  sub.write("mean", vec_tensor(n.mean()));
+  sub.write("m2", vec_tensor(n.m2()));
+  a.write(key, sub);
+}
+void read_normalizer(InputArchive& a, const std::string& key, RunningNormalizer& n) {
+  InputArchive sub;
+  a.read(key, sub);
+  torch::Tensor count, mean, m2;
+  sub.read("count", count);
+  sub.read("mean", mean);
+  sub.read("m2", m2);
+  n.set_state(count.item<double>(), tensor_vec(mean), tensor_vec(m2));
+}
+
+}  // namespace
+
+void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path) {
+  t.learner->check_parameters(t.iteration);  // never save a broken model
+  OutputArchive a;
+  a.write("format", torch::tensor(kFormat));
+  a.write("iteration", torch::tensor(static_cast<std::int64_t>(t.iteration)));
+  a.write("samples", torch::tensor(static_cast<std::int64_t>(t.samples)));
+  a.write("wall_seconds", torch::tensor(t.wall_seconds, torch::kFloat64));
+  a.write("config", bytes_tensor(t.cfg.text));
+  a.write("input_size", torch::tensor(static_cast<std::int64_t>(t.collector->input_size())));
+  a.write("action_size", torch::tensor(static_cast<std::int64_t>(t.collector->action_size())));
+  OutputArchive policy, value, policy_opt, value_opt, rngs, sources;
+  t.learner->policy()->save(policy);
+  t.learner->value()->save(value);
+  t.learner->policy_optimizer().save(policy_opt);
+  t.learner->value_optimizer().save(value_opt);
+  a.write("policy", policy);
+  a.write("value", value);
+  a.write("policy_optimizer", policy_opt);
+  a.write("value_optimizer", value_opt);
+  a.write("kl_beta", torch::tensor(const_cast<PpoLearner&>(*t.learner).kl().beta(), torch::kFloat64));
+  write_normalizer(a, "obs_norm", t.obs_norm);
+  write_normalizer(a, "return_norm", t.return_norm);
+  rngs.write("noise", bytes_tensor(rng_text(t.noise_rng)));
+  rngs.write("shuffle", bytes_tensor(rng_text(t.shuffle_rng)));
+  const auto env_states = t.collector->rng_states();
+  rngs.write("envs", torch::tensor(static_cast<std::int64_t>(env_states.size())));
+  for (std::size_t i = 0; i < env_states.size(); ++i) rngs.write("env" + std::to_string(i), bytes_tensor(env_states[i]));
+  a.write("rng", rngs);
+  for (std::size_t i = 0; i < t.rewards.size(); ++i) {
+    OutputArchive s;
+    t.rewards[i].second->save(s);
+    sources.write(std::to_string(i), s);
+  }
+  a.write("reward_sources", sources);
+  std::ostringstream out;
+  a.save_to(out);
+  write_file_atomic(path, out.str());
+}
+
+void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
+  const std::string where = path.string();
+  if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
+  try {
+    std::istringstream in(read_text_file(path));
+    InputArchive a;
+    a.load_from(in);
+    torch::Tensor x;
+    a.read("format", x);
+    if (x.item<std::int64_t>() != kFormat)
+      throw Error("checkpoint format " + std::to_string(x.item<std::int64_t>()) + ", this mimic reads " + std::to_string(kFormat));
+    a.read("input_size", x);
+    const auto in_size = x.item<std::int64_t>();
+    a.read("action_size", x);
+    const auto act_size = x.item<std::int64_t>();
+    if (in_size != t.collector->input_size() || act_size != t.collector->action_size())
+      throw Error("saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
+                  std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size()));
+    a.read("iteration", x);
+    t.iteration = static_cast<int>(x.item<std::int64_t>());
+    a.read("samples", x);
+    t.samples = x.item<std::int64_t>();
+    a.read("wall_seconds", x);
+    t.wall_seconds = x.item<double>();
+    InputArchive policy, value, policy_opt, value_opt, rngs, sources;
+    a.read("policy", policy);
+    a.read("value", value);
+    a.read("policy_optimizer", policy_opt);
+    a.read("value_optimizer", value_opt);
+    t.learner->policy()->load(policy);
+    t.learner->value()->load(value);
+    t.learner->policy_optimizer().load(policy_opt);
+    t.learner->value_optimizer().load(value_opt);
+    a.read("kl_beta", x);
+    t.learner->kl().set_beta(x.item<double>());
+    read_normalizer(a, "obs_norm", t.obs_norm);
+    read_normalizer(a, "return_norm", t.return_norm);
+    a.read("rng", rngs);
+    rngs.read("noise", x);
+    set_rng(t.noise_rng, tensor_bytes(x), "noise");
+    rngs.read("shuffle", x);
+    set_rng(t.shuffle_rng, tensor_bytes(x), "shuffle");
+    rngs.read("envs", x);
+    std::vector<std::string> env_states(static_cast<std::size_t>(x.item<std::int64_t>()));
+    for (std::size_t i = 0; i < env_states.size(); ++i) {
+      rngs.read("env" + std::to_string(i), x);
+      env_states[i] = tensor_bytes(x);
+    }
+    t.collector->set_rng_states(env_states);
+    rngs.read("torch", x);
+    a.read("reward_sources", sources);
+    for (std::size_t i = 0; i < t.rewards.size(); ++i) {
+      InputArchive s;
+      sources.read(std::to_string(i), s);
+      t.rewards[i].second->load(s);
+    }
+    t.learner->check_parameters(t.iteration);
+  } catch (const c10::Error& e) {
+    throw Error(where + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
+  } catch (const TrainingDiverged& e) {
+    throw Error(where + ": " + e.what());
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
+  // Fresh episodes from the restored generators, exactly as the saving run continued.
+  t.collector->reset_all();
+  std::fill(t.discounted_return.begin(), t.discounted_return.end(), 0.0);
+}
+
+}  // namespace mimic

@@ -1,0 +1,259 @@
+#include "learn/collector.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+const double kLogSqrt2Pi = 0.5 * std::log(2.0 * 3.14159265358979323846);
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+// One environment's running state between steps.
+struct Collector::Slot {
+  std::mt19937_64 rng;
+  std::deque<Eigen::VectorXd> frames;  // the last `history` observations, oldest first
+  double episode_return = 0.0;
+  int episode_length = 0;
+  bool idle = false;  // episodes mode: this slot has finished its share
+  // Results of the latest step, written by the worker.
+  StepResult result;
+  Eigen::VectorXd action;
+};
+
+Collector::Collector(const EnvFactory& factory, int envs, int threads, int history, std::uint64_t seed)
+    : pool_(std::min(threads, envs)), history_(history) {
+  if (envs < 1) throw Error("collector: at least one environment is needed");
+  if (history < 1) throw Error("collector: history must be >= 1");
+  std::seed_seq seq{seed, std::uint64_t{0x6d696d6963}};  // "mimic"
+  std::vector<std::uint64_t> seeds(static_cast<std::size_t>(envs));
+  seq.generate(seeds.begin(), seeds.end());
+  for (int i = 0; i < envs; ++i) {
+    envs_.push_back(factory());
+    auto slot = std::make_unique<Slot>();
+    slot->rng.seed(seeds[static_cast<std::size_t>(i)]);
+    slots_.push_back(std::move(slot));
+  }
+  frame_size_ = envs_[0]->observation_size();
+  action_size_ = envs_[0]->action_size();
+  reset_all();
+}
+
+Collector::~Collector() = default;
+
+void Collector::reset_slot(int i) {
+  Slot& s = *slots_[static_cast<std::size_t>(i)];
+  const Eigen::VectorXd obs = envs_[static_cast<std::size_t>(i)]->reset(s.rng);
+  if (obs.size() != frame_size_ || !obs.allFinite())
+    throw Error("environment " + std::to_string(i) + ": reset gave a non-finite or wrongly sized observation");
+  s.frames.assign(static_cast<std::size_t>(history_), obs);
+  s.episode_return = 0.0;
+  s.episode_length = 0;
+}
+
+void Collector::reset_all() {
+  pool_.run(envs(), [this](int i) { reset_slot(i); });
+  for (auto& s : slots_) s->idle = false;
+}
+
+EpisodeStats Collector::take_episode_stats() { return std::exchange(stats_, {}); }
+CollectTimes Collector::take_times() { return std::exchange(times_, {}); }
+
+std::vector<std::string> Collector::rng_states() const {
+  std::vector<std::string> out;
+  for (const auto& s : slots_) {
+    std::ostringstream os;
+    os << s->rng;
+    out.push_back(os.str());
+  }
+  return out;
+}
+
+void Collector::set_rng_states(const std::vector<std::string>& states) {
+  if (states.size() != slots_.size())
+    throw Error("collector: " + std::to_string(states.size()) + " saved generator states for " + std::to_string(slots_.size()) + " environments");
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    std::istringstream is(states[i]);
+    is >> slots_[i]->rng;
+    if (!is) throw Error("collector: saved generator state " + std::to_string(i) + " is unreadable");
+  }
+}
+
+Rollout Collector::collect_steps(int steps, GaussianPolicy& policy, ValueNet& value, const RunningNormalizer& norm,
+                                 std::mt19937_64& noise_rng, bool deterministic) {
+  if (steps < 1) throw Error("collector: steps must be >= 1");
+  return collect(steps, 0, policy, value, norm, noise_rng, deterministic);
+}
+
+Rollout Collector::collect_episodes(int episodes, GaussianPolicy& policy, ValueNet& value, const RunningNormalizer& norm,
+                                    std::mt19937_64& noise_rng, bool deterministic) {
+  if (episodes < 1) throw Error("collector: episodes must be >= 1");
+  reset_all();
+  return collect(0, episodes, policy, value, norm, noise_rng, deterministic);
+}
+
+Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, ValueNet& value, const RunningNormalizer& norm,
+                           std::mt19937_64& noise_rng, bool deterministic) {
+  torch::NoGradGuard no_grad;
+  const int n_env = envs(), in = input_size(), na = action_size_;
+  const bool by_episodes = episodes > 0;
+  Rollout r;
+  r.input_size = in, r.frame_size = frame_size_, r.action_size = na, r.envs = n_env;
+  r.env_steps.resize(static_cast<std::size_t>(n_env));
+  int started = 0;  // episodes mode: episodes begun (each slot starts one now)
+  if (by_episodes) {
+    for (int e = 0; e < n_env; ++e) slots_[static_cast<std::size_t>(e)]->idle = e >= episodes;
+    started = std::min(episodes, n_env);
+  }
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::vector<int> active;
+  // Inputs whose value bootstraps an ended-by-truncation step: (sample, raw input).
+  std::vector<std::pair<int, Eigen::VectorXd>> bootstrap;
+
+  for (int t = 0; steps == 0 || t < steps; ++t) {
+    active.clear();
+    for (int e = 0; e < n_env; ++e)
+      if (!slots_[static_cast<std::size_t>(e)]->idle) active.push_back(e);
+    if (active.empty()) break;
+    const int b = static_cast<int>(active.size());
+
+    // Batched inference over the active environments.
+    auto t0 = Clock::now();
+    Eigen::MatrixXd raw(b, in);
+    for (int k = 0; k < b; ++k) {
+      const Slot& s = *slots_[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])];
+      for (int f = 0; f < history_; ++f) raw.row(k).segment(f * frame_size_, frame_size_) = s.frames[static_cast<std::size_t>(f)].transpose();
+    }
+    const Eigen::MatrixXf x = norm.normalize(raw).cast<float>();
+    // Eigen is column-major: transpose into a row-major buffer for torch.
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> xr = x;
+    const torch::Tensor input = torch::from_blob(xr.data(), {b, in}, torch::kFloat32);
+    auto [mean_t, log_std_t] = policy->forward(input);
+    const torch::Tensor value_t = value->forward(input).contiguous();
+    mean_t = mean_t.contiguous();
+    log_std_t = log_std_t.contiguous();
+    const float* mean_p = mean_t.data_ptr<float>();
+    const float* log_std_p = log_std_t.data_ptr<float>();
+    const float* value_p = value_t.data_ptr<float>();
+
+    const std::size_t base = r.env_reward.size();
+    for (int k = 0; k < b; ++k) {
+      const int e = active[static_cast<std::size_t>(k)];
+      Slot& s = *slots_[static_cast<std::size_t>(e)];
+      s.action.resize(na);
+      double logp = 0.0;
+      for (int j = 0; j < na; ++j) {
+        const double mu = mean_p[k * na + j], ls = log_std_p[k * na + j];
+        const double z = deterministic ? 0.0 : gauss(noise_rng);
+        const float a = static_cast<float>(mu + std::exp(ls) * z);
+        s.action[j] = a;
+        r.action.push_back(a);
+        r.mean.push_back(mean_p[k * na + j]);
+        r.log_std.push_back(log_std_p[k * na + j]);
+        const double zz = (static_cast<double>(a) - mu) / std::exp(ls);
+        logp += -0.5 * zz * zz - ls - kLogSqrt2Pi;
+      }
+      r.log_prob.push_back(static_cast<float>(logp));
+      r.value.push_back(value_p[k]);
+      for (int c = 0; c < in; ++c) r.raw_input.push_back(raw(k, c));
+      r.input.insert(r.input.end(), xr.row(k).data(), xr.row(k).data() + in);
+      r.env_index.push_back(e);
+      r.env_steps[static_cast<std::size_t>(e)].push_back(static_cast<int>(base) + k);
+      r.env_reward.push_back(0.0);
+      r.ended.push_back(0);
+      r.failed.push_back(0);
+      r.next_value.push_back(0.0);
+    }
+    times_.inference += seconds_since(t0);
+
+    // Step every active environment in parallel; each touches only its own slot.
+    t0 = Clock::now();
+    pool_.run(b, [&](int k) {
+      const int e = active[static_cast<std::size_t>(k)];
+      Slot& s = *slots_[static_cast<std::size_t>(e)];
+      s.result = envs_[static_cast<std::size_t>(e)]->step(s.action.cast<double>());
+    });
+    times_.simulation += seconds_since(t0);
+
+    // Record results in environment order, then start new episodes where one ended.
+    std::vector<int> to_reset;
+    for (int k = 0; k < b; ++k) {
+      const int e = active[static_cast<std::size_t>(k)];
+      Slot& s = *slots_[static_cast<std::size_t>(e)];
+      const StepResult& res = s.result;
+      const std::size_t i = base + static_cast<std::size_t>(k);
+      if (res.observation.size() != frame_size_ || !res.observation.allFinite())
+        throw Error("environment " + std::to_string(e) + ": step " + std::to_string(s.episode_length + 1) +
+                    " of its episode gave a non-finite or wrongly sized observation");
+      const double rew = res.reward();
+      if (!std::isfinite(rew)) throw Error("environment " + std::to_string(e) + ": non-finite reward at step " + std::to_string(s.episode_length + 1));
+      r.env_reward[i] = rew;
+      for (const auto& [name, v] : res.reward_terms) {
+        auto it = std::find_if(r.term_sums.begin(), r.term_sums.end(), [&](const auto& p) { return p.first == name; });
+        if (it == r.term_sums.end()) r.term_sums.emplace_back(name, v);
+        else it->second += v;
+      }
+      r.next_obs.insert(r.next_obs.end(), res.observation.data(), res.observation.data() + frame_size_);
+      s.frames.pop_front();
+      s.frames.push_back(res.observation);
+      s.episode_return += rew;
+      ++s.episode_length;
+      if (res.done()) {
+        r.ended[i] = 1;
+        r.failed[i] = is_failure(res.termination) ? 1 : 0;
+        stats_.returns.push_back(s.episode_return);
+        stats_.lengths.push_back(s.episode_length);
+        if (r.failed[i]) ++stats_.failures;
+        if (!r.failed[i]) {
+          Eigen::VectorXd last(in);
+          for (int f = 0; f < history_; ++f) last.segment(f * frame_size_, frame_size_) = s.frames[static_cast<std::size_t>(f)];
+          bootstrap.emplace_back(static_cast<int>(i), std::move(last));
+        }
+        if (by_episodes && started >= episodes) s.idle = true;
+        else {
+          if (by_episodes) ++started;
+          to_reset.push_back(e);
+        }
+      }
+    }
+    if (!to_reset.empty()) {
+      t0 = Clock::now();
+      pool_.run(static_cast<int>(to_reset.size()), [&](int k) { reset_slot(to_reset[static_cast<std::size_t>(k)]); });
+      times_.simulation += seconds_since(t0);
+    }
+    if (step_hook_) step_hook_(r.size());
+  }
+
+  // Values that bootstrap: the state after each step is the next sample of the same environment,
+  // except after an ended episode (its last observation) and after the last step (the current one).
+  auto t0 = Clock::now();
+  for (int e = 0; e < n_env; ++e) {
+    const auto& idx = r.env_steps[static_cast<std::size_t>(e)];
+    for (std::size_t j = 0; j + 1 < idx.size(); ++j)
+      if (!r.ended[static_cast<std::size_t>(idx[j])]) r.next_value[static_cast<std::size_t>(idx[j])] = r.value[static_cast<std::size_t>(idx[j + 1])];
+    if (!idx.empty() && !r.ended[static_cast<std::size_t>(idx.back())]) {
+      const Slot& s = *slots_[static_cast<std::size_t>(e)];
+      Eigen::VectorXd last(in);
+      for (int f = 0; f < history_; ++f) last.segment(f * frame_size_, frame_size_) = s.frames[static_cast<std::size_t>(f)];
+      bootstrap.emplace_back(idx.back(), std::move(last));
+    }
+  }
+  if (!bootstrap.empty()) {
+    Eigen::MatrixXd raw(static_cast<Eigen::Index>(bootstrap.size()), in);
+    for (std::size_t k = 0; k < bootstrap.size(); ++k) raw.row(static_cast<Eigen::Index>(k)) = bootstrap[k].second.transpose();
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> xr = norm.normalize(raw).cast<float>();
+    const torch::Tensor v = value->forward(torch::from_blob(xr.data(), {xr.rows(), in}, torch::kFloat32)).contiguous();
+    for (std::size_t k = 0; k < bootstrap.size(); ++k)
+      r.next_value[static_cast<std::size_t>(bootstrap[k].first)] = v.data_ptr<float>()[k];
+  }
+  times_.inference += seconds_since(t0);
+  return r;
+}
+
+}  // namespace mimic

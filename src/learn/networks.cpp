@@ -1,0 +1,98 @@
+#include "learn/networks.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+void truncated_normal_(torch::Tensor t, double std) {
+  torch::NoGradGuard no_grad;
+  t.normal_(0.0, std);
+  for (int round = 0; round < 100; ++round) {
+    const torch::Tensor outside = t.abs() > 2.0 * std;
+    if (!outside.any().item<bool>()) return;
+    t.masked_scatter_(outside, torch::randn({outside.sum().item<std::int64_t>()}, t.options()) * std);
+  }
+  t.clamp_(-2.0 * std, 2.0 * std);
+}
+
+std::int64_t parameter_count(const torch::nn::Module& m) {
+  std::int64_t n = 0;
+  for (const auto& p : m.parameters()) n += p.numel();
+  return n;
+}
+
+namespace {
+
+void init_linear(torch::nn::Linear& l, const std::string& kind, double scale) {
+  torch::NoGradGuard no_grad;
+  if (kind == "orthogonal")
+    torch::nn::init::orthogonal_(l->weight, scale);
+  else
+    truncated_normal_(l->weight, scale);
+  torch::nn::init::zeros_(l->bias);
+}
+
+}  // namespace
+
+FeatureNetImpl::FeatureNetImpl(int input_size, int out_size, const NetworkConfig& cfg)
+    : input_size_(input_size), history_(cfg.history), relu_(cfg.activation == "relu") {
+  if (input_size < 1 || out_size < 1) throw Error("network: input and output sizes must be positive");
+  if (input_size % cfg.history != 0)
+    throw Error("network: input of " + std::to_string(input_size) + " values is not " + std::to_string(cfg.history) + " equal frames");
+  int width = input_size;
+  if (history_ > 1) {
+    gru_ = register_module("gru", torch::nn::GRU(torch::nn::GRUOptions(input_size / history_, cfg.gru_size).batch_first(true)));
+    torch::NoGradGuard no_grad;
+    for (auto& p : gru_->named_parameters()) {
+      if (p.key().find("weight") != std::string::npos) torch::nn::init::orthogonal_(p.value());
+      else torch::nn::init::zeros_(p.value());
+    }
+    width = cfg.gru_size;
+  }
+  // Hidden gain: sqrt(2) for ReLU, 5/3 for tanh (torch's calculate_gain), or the truncated std.
+  const double hidden_scale = cfg.init == "orthogonal" ? (relu_ ? std::sqrt(2.0) : 5.0 / 3.0) : cfg.init_std;
+  layers_ = register_module("layers", torch::nn::ModuleList());
+  for (int h : cfg.hidden) {
+    torch::nn::Linear l(width, h);
+    init_linear(l, cfg.init, hidden_scale);
+    layers_->push_back(l);
+    width = h;
+  }
+  torch::nn::Linear out(width, out_size);
+  init_linear(out, cfg.output_init, cfg.output_scale);
+  layers_->push_back(out);
+}
+
+torch::Tensor FeatureNetImpl::forward(const torch::Tensor& x) {
+  torch::Tensor h = x;
+  if (history_ > 1) {
+    h = h.view({h.size(0), history_, input_size_ / history_});
+    h = std::get<1>(gru_->forward(h)).squeeze(0);  // final hidden state [batch, gru]
+  }
+  const std::size_t n = layers_->size();
+  for (std::size_t i = 0; i < n; ++i) {
+    h = layers_[i]->as<torch::nn::Linear>()->forward(h);
+    if (i + 1 < n) h = relu_ ? torch::relu(h) : torch::tanh(h);
+  }
+  return h;
+}
+
+GaussianPolicyImpl::GaussianPolicyImpl(int input_size, int action_size, const PolicyConfig& cfg) {
+  net_ = register_module("net", FeatureNet(input_size, action_size, cfg.net));
+  log_std_ = register_parameter("log_std", torch::full({action_size}, cfg.log_std), cfg.learn_std);
+}
+
+std::pair<torch::Tensor, torch::Tensor> GaussianPolicyImpl::forward(const torch::Tensor& obs) {
+  torch::Tensor mean = net_->forward(obs);
+  return {mean, log_std_.expand_as(mean)};
+}
+
+ValueNetImpl::ValueNetImpl(int input_size, const NetworkConfig& cfg) {
+  net_ = register_module("net", FeatureNet(input_size, 1, cfg));
+}
+
+torch::Tensor ValueNetImpl::forward(const torch::Tensor& obs) { return net_->forward(obs).squeeze(-1); }
+
+}  // namespace mimic

@@ -1,0 +1,55 @@
+#pragma once
+// Policy and value networks: an MLP trunk, optionally behind a GRU that embeds the last K frames
+// of observations (seed 004 section 5.1), with orthogonal or truncated-normal initialisation.
+// The policy is a diagonal Gaussian: mean from the network, log sigma a state-independent
+// parameter that is trained or fixed (SFV's fixed covariance).
+#include <torch/torch.h>
+
+#include "learn/train_config.hpp"
+
+namespace mimic {
+
+// Inputs are [batch, history * frame] (frames oldest first); outputs [batch, out].
+class FeatureNetImpl : public torch::nn::Module {
+ public:
+  FeatureNetImpl(int input_size, int out_size, const NetworkConfig& cfg);
+  torch::Tensor forward(const torch::Tensor& x);
+  int input_size() const { return input_size_; }
+
+ private:
+  int input_size_, history_;
+  bool relu_;
+  torch::nn::GRU gru_{nullptr};
+  torch::nn::ModuleList layers_;
+};
+TORCH_MODULE(FeatureNet);
+
+class GaussianPolicyImpl : public torch::nn::Module {
+ public:
+  GaussianPolicyImpl(int input_size, int action_size, const PolicyConfig& cfg);
+  // Mean [batch, actions] and log sigma broadcast to the same shape.
+  std::pair<torch::Tensor, torch::Tensor> forward(const torch::Tensor& obs);
+  torch::Tensor log_std() const { return log_std_; }
+
+ private:
+  FeatureNet net_{nullptr};
+  torch::Tensor log_std_;
+};
+TORCH_MODULE(GaussianPolicy);
+
+class ValueNetImpl : public torch::nn::Module {
+ public:
+  ValueNetImpl(int input_size, const NetworkConfig& cfg);
+  torch::Tensor forward(const torch::Tensor& obs);  // [batch]
+
+ private:
+  FeatureNet net_{nullptr};
+};
+TORCH_MODULE(ValueNet);
+
+// Normal initialisation redrawn until every value lies within two standard deviations.
+void truncated_normal_(torch::Tensor t, double std);
+// Number of trainable and fixed parameters.
+std::int64_t parameter_count(const torch::nn::Module& m);
+
+}  // namespace mimic

@@ -1,0 +1,43 @@
+#pragma once
+// Where the learner's reward comes from. The trainer asks every configured source for a reward
+// per sample of a rollout and sums them with their weights; sources that learn (discriminators)
+// update after the policy and save their state with the checkpoint. Tracking, GAIL and ICCGAN
+// rewards plug in here without touching the trainer.
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "learn/rollout.hpp"
+#include "learn/train_config.hpp"
+
+namespace torch::serialize {
+class OutputArchive;
+class InputArchive;
+}  // namespace torch::serialize
+
+namespace mimic {
+
+class RewardSource {
+ public:
+  virtual ~RewardSource() = default;
+  virtual std::string name() const = 0;
+  // One reward per sample of the rollout.
+  virtual std::vector<double> rewards(const Rollout& rollout) = 0;
+  // After the policy update; returns named metrics for the log.
+  virtual std::vector<std::pair<std::string, double>> update(const Rollout&) { return {}; }
+  virtual void save(torch::serialize::OutputArchive&) const {}
+  virtual void load(torch::serialize::InputArchive&) {}
+};
+
+// The environment's own task reward.
+class EnvRewardSource : public RewardSource {
+ public:
+  std::string name() const override { return "env"; }
+  std::vector<double> rewards(const Rollout& rollout) override { return rollout.env_reward; }
+};
+
+// A source by its config name; Error naming the source and the known ones otherwise.
+std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, const std::string& config_source);
+
+}  // namespace mimic

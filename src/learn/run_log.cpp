@@ -1,0 +1,152 @@
+#include "learn/run_log.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/tensorboard.hpp"
+
+namespace mimic {
+
+void IterationMetrics::set(const std::string& name, double v) {
+  for (auto& [n, x] : values)
+    if (n == name) {
+      x = v;
+      return;
+    }
+  values.emplace_back(name, v);
+}
+
+double IterationMetrics::get(const std::string& name) const {
+  for (const auto& [n, x] : values)
+    if (n == name) return x;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+}  // namespace
+
+MetricsTable read_metrics_csv(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path);
+  std::istringstream in(text);
+  std::string line;
+  MetricsTable t;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty()) continue;
+    if (t.columns.empty()) {
+      t.columns = split(line);
+      continue;
+    }
+    const auto cells = split(line);
+    if (cells.size() != t.columns.size())
+      throw ParseError(path.string(), line_no, fmt::format("{} fields, the header has {}", cells.size(), t.columns.size()));
+    std::vector<double> row;
+    for (const auto& c : cells) {
+      if (c.empty()) {
+        row.push_back(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(c, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != c.size()) throw ParseError(path.string(), line_no, "'" + c + "' is not a number");
+      row.push_back(v);
+    }
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+std::vector<double> MetricsTable::column(const std::string& name) const {
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c] == name) {
+      std::vector<double> out;
+      for (const auto& r : rows) out.push_back(r[c]);
+      return out;
+    }
+  throw Error("metrics: no column '" + name + "'");
+}
+
+RunLog::RunLog(const std::filesystem::path& run_dir, bool tensorboard, int resume_iteration)
+    : csv_path_(run_dir / "metrics.csv") {
+  std::filesystem::create_directories(run_dir);
+  if (resume_iteration >= 0 && std::filesystem::exists(csv_path_)) {
+    // Keep the header and the rows the checkpoint covers; rows written after it are redone.
+    std::istringstream in(read_text_file(csv_path_));
+    std::string line, kept;
+    bool header = true;
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      if (header) {
+        columns_ = split(line);
+        kept += line + "\n";
+        header = false;
+        continue;
+      }
+      const auto cells = split(line);
+      if (cells.size() != columns_.size()) break;  // a row cut by the kill
+      int it = 0;
+      try {
+        it = std::stoi(cells[0]);
+      } catch (const std::exception&) {
+        break;
+      }
+      if (it > resume_iteration) break;
+      kept += line + "\n";
+    }
+    write_file_atomic(csv_path_, kept);
+  } else {
+    write_file_atomic(csv_path_, "");
+  }
+  csv_.open(csv_path_, std::ios::app);
+  if (!csv_) throw Error(csv_path_.string() + ": cannot open for writing");
+  if (tensorboard) tb_ = std::make_unique<TensorBoardWriter>(run_dir / "tensorboard");
+}
+
+RunLog::~RunLog() = default;
+
+void RunLog::write(const IterationMetrics& m) {
+  if (columns_.empty()) {
+    columns_.push_back("iteration");
+    for (const auto& [n, v] : m.values) columns_.push_back(n);
+    std::string header;
+    for (const auto& c : columns_) header += (header.empty() ? "" : ",") + c;
+    csv_ << header << '\n';
+  }
+  std::string row = std::to_string(m.iteration);
+  for (std::size_t c = 1; c < columns_.size(); ++c) {
+    const double v = m.get(columns_[c]);
+    row += ',';
+    if (std::isfinite(v)) row += fmt::format("{:.9g}", v);
+  }
+  csv_ << row << '\n';
+  csv_.flush();
+  if (!csv_) throw Error(csv_path_.string() + ": write failed");
+  if (tb_) {
+    for (const auto& [n, v] : m.values)
+      if (std::isfinite(v)) tb_->scalar(n, v, m.iteration);
+    tb_->flush();
+  }
+}
+
+}  // namespace mimic

@@ -1,0 +1,114 @@
+#include "learn/train_bench.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <random>
+
+#include "core/error.hpp"
+#include "core/worker_pool.hpp"
+#include "env/env_factory.hpp"
+#include "learn/trainer.hpp"
+
+namespace mimic {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Control steps per second of `envs` environments stepped by `threads` workers with random actions.
+double simulation_rate(const EnvFactory& factory, int envs, int threads, int steps_per_env) {
+  std::vector<std::unique_ptr<Env>> pool_envs;
+  std::vector<std::mt19937_64> rngs;
+  for (int i = 0; i < envs; ++i) {
+    pool_envs.push_back(factory());
+    rngs.emplace_back(static_cast<std::uint64_t>(i) + 7);
+    pool_envs.back()->reset(rngs.back());
+  }
+  WorkerPool pool(std::min(threads, envs));
+  const auto start = Clock::now();
+  pool.run(envs, [&](int i) {
+    Env& env = *pool_envs[static_cast<std::size_t>(i)];
+    std::mt19937_64& rng = rngs[static_cast<std::size_t>(i)];
+    std::normal_distribution<double> noise(0.0, 0.3);
+    Eigen::VectorXd a(env.action_size());
+    for (int t = 0; t < steps_per_env; ++t) {
+      for (Eigen::Index j = 0; j < a.size(); ++j) a[j] = noise(rng);
+      if (env.step(a).done()) env.reset(rng);
+    }
+  });
+  return static_cast<double>(envs) * steps_per_env / seconds_since(start);
+}
+
+}  // namespace
+
+std::string train_benchmark_config(const TrainBenchOptions& o, int threads) {
+  return fmt::format(
+      "# seed 004 Table 1 sizes on humanoid3d (move-forward task, episodes from the walk)\n"
+      "seed: 1\n"
+      "iterations: {}\n"
+      "tensorboard: false\n"
+      "env: {{name: humanoid_forward, init: mocap}}\n"
+      "collect: {{envs: {}, threads: {}, samples: {}}}\n"
+      "policy: {{hidden: [1024, 512], activation: relu, init: truncated_normal, init_std: 0.05,\n"
+      "          output_init: truncated_normal, output_scale: 0.05, log_std: -1.0}}\n"
+      "value: {{hidden: [1024, 512], activation: relu}}\n"
+      "ppo: {{gamma: 0.95, lambda: 0.95, clip: 0.2, epochs: 5, value_epochs: 5, minibatch: 256, kl_stop: 0}}\n"
+      "optimizer: {{kind: adam, policy_lr: 5.0e-6, value_lr: 1.0e-4}}\n",
+      o.iterations + 1, o.envs, threads, o.samples);
+}
+
+std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts, const std::function<void(const std::string&)>& progress) {
+  std::vector<TrainBenchResult> out;
+  for (int threads : opts.threads) {
+    if (threads < 1) throw Error("bench train: thread counts must be >= 1");
+    const TrainConfig cfg = parse_train_config(train_benchmark_config(opts, threads), "bench train config");
+    TrainBenchResult r;
+    r.threads = threads;
+    Trainer trainer(cfg);
+    r.sim_only_steps_per_s = simulation_rate(make_env_factory(cfg.env, YamlReader(cfg.source)), opts.envs, threads,
+                                             std::max(1, opts.samples / opts.envs));
+    if (progress) progress(fmt::format("{} thread(s): simulation only {:.0f} steps/s; training {} iterations...", threads, r.sim_only_steps_per_s, opts.iterations + 1));
+    trainer.iterate();  // warm-up: allocations, first normaliser statistics
+    double sim = 0, inf = 0, learn = 0;
+    long long samples = 0;
+    const auto start = Clock::now();
+    for (int i = 0; i < opts.iterations; ++i) {
+      const IterationMetrics m = trainer.iterate();
+      sim += m.get("time_simulation");
+      inf += m.get("time_inference");
+      learn += m.get("time_learning");
+      samples = static_cast<long long>(m.get("samples"));
+    }
+    r.seconds = seconds_since(start);
+    const long long timed = samples - samples / (opts.iterations + 1);
+    r.train_samples_per_s = static_cast<double>(timed) / r.seconds;
+    r.share_simulation = sim / r.seconds;
+    r.share_inference = inf / r.seconds;
+    r.share_learning = learn / r.seconds;
+    if (progress) progress(fmt::format("{} thread(s): {:.0f} samples/s end to end", threads, r.train_samples_per_s));
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string format_train_benchmark(const TrainBenchOptions& opts, const std::vector<TrainBenchResult>& results) {
+  std::string s = fmt::format(
+      "PPO on humanoid3d (34 DoF, 600 Hz physics / 30 Hz control), policy and value 1024-512, {} samples per iteration,\n"
+      "5 epochs of minibatch 256, {} environments, {} timed iterations:\n\n"
+      "| threads | sim only (steps/s) | end to end (samples/s) | per thread | simulation | inference | learning | vs 1 thread |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+      opts.samples, opts.envs, opts.iterations);
+  double base = 0;
+  for (const auto& r : results) {
+    if (r.threads == 1) base = r.train_samples_per_s;
+  }
+  for (const auto& r : results)
+    s += fmt::format("| {} | {:.0f} | {:.0f} | {:.0f} | {:.0f}% | {:.0f}% | {:.0f}% | {} |\n", r.threads, r.sim_only_steps_per_s,
+                     r.train_samples_per_s, r.train_samples_per_s / r.threads, 100 * r.share_simulation, 100 * r.share_inference,
+                     100 * r.share_learning, base > 0 ? fmt::format("{:.2f}x", r.train_samples_per_s / base) : std::string("-"));
+  return s;
+}
+
+}  // namespace mimic

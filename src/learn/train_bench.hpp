@@ -1,0 +1,34 @@
+#pragma once
+// `mimic bench train`: end-to-end PPO throughput (simulation + inference + learning) on the
+// humanoid with seed 004's Table 1 sizes (policy and value 1024-512, 5 epochs, minibatch 256,
+// buffer 4096), beside the simulation-only rate measured in the same run with the same threads.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace mimic {
+
+struct TrainBenchOptions {
+  std::vector<int> threads{1, 2};
+  int iterations = 3;   // timed, after one warm-up iteration
+  int samples = 4096;
+  int envs = 16;
+};
+
+struct TrainBenchResult {
+  int threads = 0;
+  double sim_only_steps_per_s = 0;  // random PD targets, resets on falls
+  double train_samples_per_s = 0;   // end to end
+  double share_simulation = 0, share_inference = 0, share_learning = 0;
+  double seconds = 0;               // timed wall time
+};
+
+// Needs the shared data (humanoid3d and its walk); Error naming what is missing otherwise.
+std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
+                                                  const std::function<void(const std::string&)>& progress = {});
+// A readable table (Markdown) with the per-core figures and the scaling from 1 thread.
+std::string format_train_benchmark(const TrainBenchOptions& opts, const std::vector<TrainBenchResult>& results);
+// The YAML config the benchmark trains with.
+std::string train_benchmark_config(const TrainBenchOptions& opts, int threads);
+
+}  // namespace mimic

@@ -1,0 +1,131 @@
+#include "learn/train_config.hpp"
+
+#include <thread>
+
+#include "core/config_section.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+
+namespace mimic {
+
+namespace {
+
+constexpr long kMaxLayer = 1 << 16;
+
+NetworkConfig read_network(ConfigSection& s, double output_scale) {
+  NetworkConfig n;
+  n.output_scale = output_scale;
+  n.hidden = s.integers("hidden", n.hidden, 1, kMaxLayer);
+  n.activation = s.choice("activation", n.activation, {"tanh", "relu"});
+  n.init = s.choice("init", n.init, {"orthogonal", "truncated_normal"});
+  n.init_std = s.number("init_std", n.init_std, 1e-9, 10);
+  n.output_init = s.choice("output_init", n.output_init, {"orthogonal", "truncated_normal"});
+  n.output_scale = s.number("output_scale", n.output_scale, 1e-9, 100);
+  n.history = static_cast<int>(s.integer("history", n.history, 1, 64));
+  n.gru_size = static_cast<int>(s.integer("gru_size", n.gru_size, 1, kMaxLayer));
+  return n;
+}
+
+}  // namespace
+
+TrainConfig parse_train_config(const std::string& text, const std::string& source) {
+  const YamlReader r(source);
+  const YAML::Node root = r.parse(text, "not valid YAML");
+  if (!root.IsMap()) r.fail(root, "a training config is a mapping of sections (env, policy, ppo, ...)");
+  TrainConfig c;
+  c.source = source;
+  c.text = text;
+  ConfigSection top(r, root, "");
+  c.seed = top.seed("seed", c.seed);
+  c.iterations = static_cast<int>(top.integer("iterations", c.iterations, 1, 100'000'000));
+  c.checkpoint_every = static_cast<int>(top.integer("checkpoint_every", c.checkpoint_every, 1, 100'000'000));
+  c.tensorboard = top.boolean("tensorboard", c.tensorboard);
+  c.env = top.child("env");
+  if (c.env.IsDefined() && !c.env.IsMap()) r.fail(c.env, "'env': expected a mapping such as {name: planar_walker}");
+
+  {
+    ConfigSection p(r, top.child("policy"), "policy");
+    c.policy.net = read_network(p, 0.01);
+    c.policy.log_std = p.number("log_std", c.policy.log_std, -20, 5);
+    c.policy.learn_std = p.boolean("learn_std", c.policy.learn_std);
+    p.finish();
+  }
+  {
+    ConfigSection v(r, top.child("value"), "value");
+    c.value = read_network(v, 1.0);
+    v.finish();
+  }
+
+  ConfigSection ppo(r, top.child("ppo"), "ppo");
+  PpoConfig& o = c.ppo;
+  o.gamma = ppo.number("gamma", o.gamma, 0, 1);
+  o.lambda = ppo.number("lambda", o.lambda, 0, 1);
+  o.clip = ppo.number("clip", o.clip, 0, 10);
+  o.epochs = static_cast<int>(ppo.integer("epochs", o.epochs, 0, 10'000));
+  o.value_epochs = static_cast<int>(ppo.integer("value_epochs", o.value_epochs, 0, 10'000));
+  o.minibatch = static_cast<int>(ppo.integer("minibatch", o.minibatch, 1, 1'000'000));
+  o.entropy = ppo.number("entropy", o.entropy, 0, 100);
+  o.value_clip = ppo.number("value_clip", o.value_clip, 0, 1e9);
+  o.max_grad_norm = ppo.number("max_grad_norm", o.max_grad_norm, 0, 1e9);
+  o.kl_target = ppo.number("kl_target", o.kl_target, 0, 1e3);
+  o.kl_penalty = ppo.boolean("kl_penalty", o.kl_penalty);
+  o.kl_beta = ppo.number("kl_beta", o.kl_beta, 0, 1e6);
+  o.kl_stop = ppo.number("kl_stop", o.kl_stop, 0, 1e6);
+  o.normalize_advantages = ppo.boolean("normalize_advantages", o.normalize_advantages);
+  ppo.finish();
+  if ((o.kl_penalty || o.kl_stop > 0) && !(o.kl_target > 0))
+    r.fail(root["ppo"], "'ppo.kl_target' must be positive when the KL penalty or early stop is on");
+
+  ConfigSection opt(r, top.child("optimizer"), "optimizer");
+  OptimizerConfig& op = c.optimizer;
+  op.kind = opt.choice("kind", op.kind, {"adam", "sgd"});
+  op.policy_lr = opt.number("policy_lr", op.policy_lr, 0, 10);
+  op.value_lr = opt.number("value_lr", op.value_lr, 0, 10);
+  op.momentum = opt.number("momentum", op.momentum, 0, 1);
+  op.adam_epsilon = opt.number("adam_epsilon", op.adam_epsilon, 1e-20, 1);
+  op.schedule = opt.choice("schedule", op.schedule, {"constant", "linear"});
+  op.final_fraction = opt.number("final_fraction", op.final_fraction, 0, 1);
+  opt.finish();
+
+  ConfigSection col(r, top.child("collect"), "collect");
+  CollectConfig& cc = c.collect;
+  cc.envs = static_cast<int>(col.integer("envs", cc.envs, 1, 4096));
+  cc.threads = static_cast<int>(col.integer("threads", cc.threads, 0, 1024));
+  cc.samples = static_cast<int>(col.integer("samples", cc.samples, 1, 100'000'000));
+  cc.mode = col.choice("mode", cc.mode, {"horizon", "episodes"});
+  cc.episodes = static_cast<int>(col.integer("episodes", cc.episodes, 0, 10'000'000));
+  col.finish();
+  if (cc.threads == 0) cc.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (cc.mode == "horizon" && cc.samples < cc.envs)
+    r.fail(root["collect"], "'collect.samples' (" + std::to_string(cc.samples) + ") must be at least 'collect.envs' (" + std::to_string(cc.envs) + ")");
+  if (cc.mode == "episodes" && cc.episodes < 1) r.fail(root["collect"], "'collect.episodes' must be >= 1 in episodes mode");
+
+  ConfigSection norm(r, top.child("normalize"), "normalize");
+  c.normalize.observations = norm.boolean("observations", c.normalize.observations);
+  c.normalize.clip = norm.number("clip", c.normalize.clip, 0, 1e9);
+  c.normalize.rewards = norm.boolean("rewards", c.normalize.rewards);
+  norm.finish();
+
+  const YAML::Node rewards = top.child("rewards");
+  if (rewards.IsDefined()) {
+    if (!rewards.IsSequence() || rewards.size() == 0) r.fail(rewards, "'rewards': expected a non-empty list of {source, weight}");
+    c.rewards.clear();
+    for (std::size_t i = 0; i < rewards.size(); ++i) {
+      const std::string where = "rewards[" + std::to_string(i) + "]";
+      if (!rewards[i].IsMap()) r.fail(rewards[i], "'" + where + "': expected a mapping with 'source'");
+      RewardSourceConfig rs;
+      rs.source = r.text(rewards[i], "source", "'" + where + "'");
+      rs.weight = r.number_or(rewards[i], "weight", "'" + where + "'", 1.0);
+      rs.options = rewards[i];
+      c.rewards.push_back(rs);
+    }
+  }
+  top.finish();
+  return c;
+}
+
+TrainConfig load_train_config(const std::filesystem::path& path) {
+  return parse_train_config(read_text_file(path), path.string());
+}
+
+}  // namespace mimic

@@ -1,0 +1,98 @@
+#pragma once
+// Every hyper-parameter of a PPO run, read from YAML. Defaults follow seed 002's Walker2d table
+// (A.3) where it speaks; unknown keys and wrong types are errors naming the key.
+#include <yaml-cpp/yaml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mimic {
+
+struct NetworkConfig {
+  std::vector<int> hidden{64, 64};
+  std::string activation = "tanh";        // tanh | relu
+  std::string init = "orthogonal";        // hidden layers: orthogonal | truncated_normal
+  double init_std = 0.05;                 // truncated normal's std (seed 004: 0.05)
+  std::string output_init = "orthogonal"; // orthogonal | truncated_normal
+  double output_scale = 1.0;              // orthogonal gain or truncated normal std of the output layer
+  int history = 1;                        // frames seen; > 1 embeds the last K frames with a GRU
+  int gru_size = 256;                     // seed 004: GRU(256)
+};
+
+struct PolicyConfig {
+  NetworkConfig net;
+  double log_std = -1.0;   // initial log sigma (seed 002: -1; seed 000: e^-1..1)
+  bool learn_std = true;   // false: fixed diagonal covariance (SFV)
+};
+
+struct PpoConfig {
+  double gamma = 0.99, lambda = 0.95;
+  double clip = 0.2;                 // surrogate clip range epsilon
+  int epochs = 10;                   // policy epochs per iteration
+  int value_epochs = 10;
+  int minibatch = 64;
+  double entropy = 0.0;              // entropy bonus weight
+  double value_clip = 0.0;           // 0: unclipped value loss
+  double max_grad_norm = 0.5;        // 0: no gradient-norm clipping
+  double kl_target = 0.01;
+  bool kl_penalty = false;           // adaptive beta (halve / double around the target)
+  double kl_beta = 1.0;              // its initial value
+  double kl_stop = 4.0;              // stop policy epochs when KL > kl_stop * target (0: never)
+  bool normalize_advantages = true;
+};
+
+struct OptimizerConfig {
+  std::string kind = "adam";         // adam | sgd (with momentum)
+  double policy_lr = 3e-4, value_lr = 1e-3;
+  double momentum = 0.9;             // sgd
+  double adam_epsilon = 1e-8;
+  std::string schedule = "constant"; // constant | linear (to final_fraction at the last iteration)
+  double final_fraction = 0.0;
+};
+
+struct CollectConfig {
+  int envs = 8;                 // environments stepped together
+  int threads = 1;              // worker threads (0: every core)
+  int samples = 4096;           // per iteration (horizon mode: samples / envs steps of each)
+  std::string mode = "horizon"; // horizon | episodes
+  int episodes = 0;             // episodes mode: complete episodes per iteration
+};
+
+struct NormalizeConfig {
+  bool observations = true;
+  double clip = 10.0;
+  bool rewards = false;  // divide rewards by the running std of discounted returns (seed 002)
+};
+
+// One reward source and its weight; the trainer sums weight * reward over the sources.
+struct RewardSourceConfig {
+  std::string source = "env";  // env: the environment's task reward
+  double weight = 1.0;
+  YAML::Node options;          // the source's own keys
+};
+
+struct TrainConfig {
+  std::uint64_t seed = 1;
+  int iterations = 100;
+  int checkpoint_every = 10;
+  bool tensorboard = true;
+  YAML::Node env;  // given to make_env_factory (env/env_factory.hpp); may be absent when the
+                   // program supplies its own environments (TrainOptions::env_factory)
+  PolicyConfig policy;
+  NetworkConfig value;
+  PpoConfig ppo;
+  OptimizerConfig optimizer;
+  CollectConfig collect;
+  NormalizeConfig normalize;
+  std::vector<RewardSourceConfig> rewards{RewardSourceConfig{}};
+  std::string source;  // where it came from (file path or label), for messages
+  std::string text;    // the YAML as read, stored with checkpoints
+};
+
+// Parses YAML text; `source` names it in errors (ParseError: "source:line: 'ppo.clip': ...").
+TrainConfig parse_train_config(const std::string& text, const std::string& source);
+TrainConfig load_train_config(const std::filesystem::path& path);
+
+}  // namespace mimic

@@ -1,0 +1,232 @@
+#include "learn/trainer.hpp"
+
+#include <ATen/Parallel.h>
+#include <dlfcn.h>
+
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "learn/advantage.hpp"
+#include "learn/trainer_impl.hpp"
+
+namespace mimic {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// One LibTorch intra-op thread and one OpenBLAS thread: parallelism comes from the environment
+// workers and the concurrent value update (DESIGN.md: oversubscription was 5x slower).
+void single_threaded_math() {
+  at::set_num_threads(1);
+  using SetThreads = void (*)(int);
+  if (auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+}
+
+double mean_of(const std::vector<double>& v) {
+  return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
+
+}  // namespace
+
+Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std::move(o)) {
+  single_threaded_math();
+  torch::manual_seed(cfg.seed);
+  noise_rng.seed(cfg.seed * 2 + 1);
+  shuffle_rng.seed(cfg.seed * 2 + 2);
+  if (opts.env_factory) {
+    factory = opts.env_factory;
+  } else {
+    if (!cfg.env.IsDefined()) throw Error(cfg.source + ": missing 'env': the environment to train in (e.g. env: {name: planar_walker})");
+    factory = make_env_factory(cfg.env, YamlReader(cfg.source));
+  }
+  collector = std::make_unique<Collector>(factory, cfg.collect.envs, cfg.collect.threads, cfg.policy.net.history, cfg.seed);
+  if (cfg.value.history != cfg.policy.net.history)
+    throw Error(cfg.source + ": 'value.history' (" + std::to_string(cfg.value.history) + ") must equal 'policy.history' (" +
+                std::to_string(cfg.policy.net.history) + "): both see the same input");
+  learner = std::make_unique<PpoLearner>(collector->input_size(), collector->action_size(), cfg);
+  obs_norm = RunningNormalizer(collector->input_size(), cfg.normalize.clip);
+  return_norm = RunningNormalizer(1, 0.0);
+  discounted_return.assign(static_cast<std::size_t>(cfg.collect.envs), 0.0);
+  for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, cfg.source));
+  if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(iteration + 1, n); });
+}
+
+void Trainer::Impl::compute_rewards(Rollout& r) {
+  r.reward.assign(static_cast<std::size_t>(r.size()), 0.0);
+  for (auto& [w, source] : rewards) {
+    const std::vector<double> part = source->rewards(r);
+    if (part.size() != r.reward.size())
+      throw Error("reward source '" + source->name() + "' gave " + std::to_string(part.size()) + " rewards for " + std::to_string(r.size()) + " samples");
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      if (!std::isfinite(part[i])) throw Error("reward source '" + source->name() + "' gave a non-finite reward");
+      r.reward[i] += w * part[i];
+    }
+  }
+  if (!cfg.normalize.rewards) return;
+  // Seed 002: divide rewards by the running std of the discounted return, per environment in time order.
+  std::vector<double> returns;
+  for (int e = 0; e < r.envs; ++e)
+    for (int i : r.env_steps[static_cast<std::size_t>(e)]) {
+      double& g = discounted_return[static_cast<std::size_t>(e)];
+      g = cfg.ppo.gamma * g + r.reward[static_cast<std::size_t>(i)];
+      returns.push_back(g);
+      if (r.ended[static_cast<std::size_t>(i)]) g = 0.0;
+    }
+  return_norm.update(Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(returns.data(), static_cast<Eigen::Index>(returns.size()), 1)));
+  const double scale = 1.0 / std::sqrt(return_norm.variance()[0] + 1e-8);
+  for (double& x : r.reward) x *= scale;
+}
+
+PpoBatch Trainer::Impl::make_batch(const Rollout& r) const {
+  std::vector<AdvantageStep> steps;
+  std::vector<double> advantage(static_cast<std::size_t>(r.size())), target(advantage.size());
+  for (int e = 0; e < r.envs; ++e) {
+    const auto& idx = r.env_steps[static_cast<std::size_t>(e)];
+    steps.clear();
+    for (int i : idx) {
+      const auto u = static_cast<std::size_t>(i);
+      steps.push_back({r.reward[u], r.value[u], r.next_value[u], r.ended[u] != 0, r.failed[u] != 0});
+    }
+    const Advantages a = compute_advantages(steps, cfg.ppo.gamma, cfg.ppo.lambda);
+    for (std::size_t j = 0; j < idx.size(); ++j) {
+      advantage[static_cast<std::size_t>(idx[j])] = a.advantage[j];
+      target[static_cast<std::size_t>(idx[j])] = a.target[j];
+    }
+  }
+  const std::int64_t n = r.size(), in = r.input_size, na = r.action_size;
+  auto floats = [](const std::vector<float>& v, std::vector<std::int64_t> shape) {
+    return torch::from_blob(const_cast<float*>(v.data()), shape, torch::kFloat32).clone();
+  };
+  auto doubles = [](const std::vector<double>& v) {
+    return torch::from_blob(const_cast<double*>(v.data()), {static_cast<std::int64_t>(v.size())}, torch::kFloat64).to(torch::kFloat32);
+  };
+  PpoBatch b;
+  b.input = floats(r.input, {n, in});
+  b.action = floats(r.action, {n, na});
+  b.old_mean = floats(r.mean, {n, na});
+  b.old_log_std = floats(r.log_std, {n, na});
+  b.old_value = floats(r.value, {n});
+  b.advantage = doubles(advantage);
+  b.target = doubles(target);
+  return b;
+}
+
+IterationMetrics Trainer::Impl::iterate() {
+  const auto start = Clock::now();
+  learner->set_progress(static_cast<double>(iteration) / cfg.iterations);
+  Rollout r = cfg.collect.mode == "episodes"
+                  ? collector->collect_episodes(cfg.collect.episodes, learner->policy(), learner->value(), obs_norm, noise_rng)
+                  : collector->collect_steps(std::max(1, cfg.collect.samples / cfg.collect.envs), learner->policy(), learner->value(),
+                                             obs_norm, noise_rng);
+  compute_rewards(r);
+  const auto learn_start = Clock::now();
+  const PpoStats s = learner->update(make_batch(r), shuffle_rng, cfg.collect.threads > 1, iteration + 1);
+  std::vector<std::pair<std::string, double>> source_metrics;
+  for (auto& [w, source] : rewards)
+    for (auto& m : source->update(r)) source_metrics.emplace_back(source->name() + "_" + m.first, m.second);
+  if (cfg.normalize.observations)
+    obs_norm.update(Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(r.raw_input.data(), r.size(), r.input_size)));
+  const double learn_seconds = seconds_since(learn_start);
+
+  ++iteration;
+  samples += r.size();
+  const double seconds = seconds_since(start);
+  wall_seconds += seconds;
+  const EpisodeStats ep = collector->take_episode_stats();
+  const CollectTimes times = collector->take_times();
+
+  IterationMetrics m;
+  m.iteration = iteration;
+  m.set("samples", static_cast<double>(samples));
+  m.set("wall_s", wall_seconds);
+  m.set("samples_per_s", r.size() / seconds);
+  m.set("return", mean_of(ep.returns));
+  std::vector<double> lengths(ep.lengths.begin(), ep.lengths.end());
+  m.set("episode_length", mean_of(lengths));
+  m.set("episodes", static_cast<double>(ep.returns.size()));
+  m.set("failure_rate", ep.returns.empty() ? std::nan("") : static_cast<double>(ep.failures) / static_cast<double>(ep.returns.size()));
+  m.set("reward", mean_of(r.reward));
+  m.set("policy_loss", s.policy_loss);
+  m.set("value_loss", s.value_loss);
+  m.set("kl", s.kl);
+  m.set("entropy", s.entropy);
+  m.set("clip_fraction", s.clip_fraction);
+  m.set("explained_variance", s.explained_variance);
+  m.set("kl_beta", s.beta);
+  m.set("policy_epochs", s.policy_epochs);
+  m.set("policy_lr", s.policy_lr);
+  m.set("value_lr", s.value_lr);
+  m.set("time_simulation", times.simulation);
+  m.set("time_inference", times.inference);
+  m.set("time_learning", learn_seconds);
+  for (const auto& [name, sum] : r.term_sums) m.set("term_" + name, sum / r.size());
+  for (const auto& [name, v] : source_metrics) m.set(name, v);
+  return m;
+}
+
+Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
+  const std::filesystem::path dir = opts.run_dir;
+  const bool resume = opts.resume;
+  if (!dir.empty() && !resume && std::filesystem::exists(dir / "checkpoint.pt"))
+    throw Error(dir.string() + " already holds a run (checkpoint.pt): pass --resume to continue it, or choose another output directory");
+  if (resume && dir.empty()) throw Error("resume needs a run directory");
+  if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
+    throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
+  const std::string text = cfg.text;
+  impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
+  if (dir.empty()) return;
+  if (resume) {
+    load_checkpoint(dir / "checkpoint.pt");
+  } else {
+    std::filesystem::create_directories(dir);
+    write_file_atomic(dir / "config.yaml", text);
+  }
+  impl_->log = std::make_unique<RunLog>(dir, impl_->cfg.tensorboard, resume ? impl_->iteration : -1);
+}
+
+Trainer::~Trainer() = default;
+
+IterationMetrics Trainer::iterate() {
+  IterationMetrics m = impl_->iterate();
+  if (impl_->log) impl_->log->write(m);
+  if (impl_->opts.on_iteration) impl_->opts.on_iteration(m);
+  if (m.iteration % impl_->cfg.checkpoint_every == 0) {
+    if (!impl_->opts.run_dir.empty()) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
+    // Episodes restart at every checkpoint, so that a resumed run matches the uninterrupted one.
+    impl_->collector->reset_all();
+    std::fill(impl_->discounted_return.begin(), impl_->discounted_return.end(), 0.0);
+  }
+  return m;
+}
+
+void Trainer::run() {
+  int last_saved = -1;
+  while (impl_->iteration < impl_->cfg.iterations) {
+    if (impl_->opts.stop_requested && impl_->opts.stop_requested()) break;
+    const IterationMetrics m = iterate();
+    if (m.iteration % impl_->cfg.checkpoint_every == 0) last_saved = m.iteration;
+  }
+  if (!impl_->opts.run_dir.empty() && last_saved != impl_->iteration) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
+}
+
+int Trainer::iteration() const { return impl_->iteration; }
+long long Trainer::samples() const { return impl_->samples; }
+int Trainer::input_size() const { return impl_->collector->input_size(); }
+int Trainer::action_size() const { return impl_->collector->action_size(); }
+const TrainConfig& Trainer::config() const { return impl_->cfg; }
+void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(*impl_, path); }
+void Trainer::load_checkpoint(const std::filesystem::path& path) { read_checkpoint(*impl_, path); }
+
+double Trainer::evaluate(int episodes, std::uint64_t seed) {
+  Collector eval(impl_->factory, std::min(episodes, impl_->cfg.collect.envs), impl_->cfg.collect.threads, impl_->cfg.policy.net.history, seed);
+  std::mt19937_64 rng(seed);
+  (void)eval.collect_episodes(episodes, impl_->learner->policy(), impl_->learner->value(), impl_->obs_norm, rng, /*deterministic=*/true);
+  return mean_of(eval.take_episode_stats().returns);
+}
+
+}  // namespace mimic

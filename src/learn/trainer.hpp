@@ -1,0 +1,62 @@
+#pragma once
+// A PPO training run: collect, compute rewards and advantages, update, log, checkpoint.
+// Free of LibTorch headers so that the command line and tools include it cheaply.
+//
+// Run directory: config.yaml (the config as given), checkpoint.pt (written atomically every
+// `checkpoint_every` iterations and at exit), metrics.csv, tensorboard/events.*.
+// Reproducibility: the same config and seed give the same metrics, whatever the thread count.
+// Every checkpoint also restarts the episodes in progress, so that a run resumed from a
+// checkpoint continues exactly as the uninterrupted run did.
+#include <filesystem>
+#include <functional>
+#include <memory>
+
+#include "env/env_factory.hpp"
+#include "learn/run_log.hpp"
+#include "learn/train_config.hpp"
+
+namespace mimic {
+
+struct TrainOptions {
+  std::filesystem::path run_dir;       // empty: no files at all (tests, benchmarks)
+  bool resume = false;                 // continue from run_dir/checkpoint.pt
+  std::function<bool()> stop_requested;  // polled between iterations; a stop writes a checkpoint
+  std::function<void(const IterationMetrics&)> on_iteration;  // progress output
+  // The program's own environments instead of the config's `env` section (a game, a test).
+  EnvFactory env_factory;
+  // Test hook: called after every collection step with (iteration, samples so far in it).
+  std::function<void(int, int)> step_hook;
+};
+
+class Trainer {
+ public:
+  Trainer(TrainConfig cfg, TrainOptions opts = {});
+  ~Trainer();
+  Trainer(const Trainer&) = delete;
+  Trainer& operator=(const Trainer&) = delete;
+
+  // Iterates until the config's iteration count or a stop request, then checkpoints.
+  void run();
+  // One iteration (collect, learn, log; a checkpoint when one is due).
+  IterationMetrics iterate();
+
+  int iteration() const;  // iterations completed
+  long long samples() const;
+  int input_size() const;
+  int action_size() const;
+  const TrainConfig& config() const;
+
+  void save_checkpoint(const std::filesystem::path& path) const;  // atomic
+  void load_checkpoint(const std::filesystem::path& path);
+  // Mean environment return of `episodes` episodes acting with the policy's mean (no noise);
+  // uses its own environments and generator, so training is not disturbed.
+  double evaluate(int episodes, std::uint64_t seed = 12345);
+
+  struct Impl;
+  Impl& impl() { return *impl_; }  // for tests and benchmarks that reach the networks
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mimic

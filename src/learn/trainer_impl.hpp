@@ -1,0 +1,41 @@
+#pragma once
+// The trainer's state, visible to the learn layer, its tests and its benchmark (LibTorch inside).
+#include <optional>
+#include <random>
+
+#include "env/env_factory.hpp"
+#include "learn/collector.hpp"
+#include "learn/ppo.hpp"
+#include "learn/reward_source.hpp"
+#include "learn/trainer.hpp"
+
+namespace mimic {
+
+struct Trainer::Impl {
+  TrainConfig cfg;
+  TrainOptions opts;
+  EnvFactory factory;
+  std::unique_ptr<Collector> collector;
+  std::unique_ptr<PpoLearner> learner;
+  RunningNormalizer obs_norm;
+  RunningNormalizer return_norm;            // running std of discounted returns (reward scaling)
+  std::vector<double> discounted_return;    // per environment, for reward scaling
+  std::vector<std::pair<double, std::unique_ptr<RewardSource>>> rewards;
+  std::mt19937_64 noise_rng, shuffle_rng;
+  int iteration = 0;
+  long long samples = 0;
+  double wall_seconds = 0;  // over all segments of a resumed run
+  std::unique_ptr<RunLog> log;
+
+  Impl(TrainConfig c, TrainOptions o);
+  IterationMetrics iterate();
+  // Rewards of the configured sources, weighted and (optionally) scaled, into rollout.reward.
+  void compute_rewards(Rollout& r);
+  PpoBatch make_batch(const Rollout& r) const;
+};
+
+// Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong.
+void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path);
+void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path);
+
+}  // namespace mimic

@@ -1,0 +1,276 @@
+// Seed 000's "move forward" task: reward terms against hand-computed values, the two kinds of
+// episode start, and how episodes end.
+#include "env/humanoid_forward.hpp"
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "motion/deepmimic.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+using Init = HumanoidForwardConfig::Init;
+
+CharacterModel humanoid() {
+  const auto dir = test::shared_data() / "deepmimic/characters";
+  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+}
+
+std::shared_ptr<const Clip> motion(const CharacterModel& ch, const char* name) {
+  return std::make_shared<const Clip>(
+      load_deepmimic_motion(test::shared_data() / "deepmimic/motions" / name, ch.skeleton));
+}
+
+// The clip turned by `yaw` about +Z and moved by `shift`: a start away from the track's.
+std::shared_ptr<const Clip> moved(const Clip& clip, double yaw, const Vec3& shift) {
+  Clip out = clip;
+  const Quat r = heading_rotation(yaw);
+  for (Pose& p : out.frames) {
+    p.root_pos = r * p.root_pos + shift;
+    p.rot[0] = r * p.rot[0];
+  }
+  return std::make_shared<const Clip>(std::move(out));
+}
+
+#define NEED_HUMANOID()          \
+  std::filesystem::path shared_; \
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
+
+double term(const StepResult& r, const std::string& name) {
+  for (const auto& [n, v] : r.reward_terms)
+    if (n == name) return v;
+  throw std::logic_error("no reward term " + name);
+}
+
+double max_joint_difference(const Pose& a, const Pose& b) {
+  double d = 0;
+  for (std::size_t j = 1; j < a.rot.size(); ++j)
+    d = std::max(d, rotation_distance(a.rot[j], b.rot[j]));
+  return d;
+}
+
+// The character up in the air, rigid (PD targets = its pose), flying along +X and sideways.
+InitState flying(const CharacterModel& ch) {
+  InitState s{rest_pose(ch.skeleton, Vec3(0, 0.4, 5.0)), PoseVelocity{}, 0.0};
+  s.velocity.root_lin = Vec3(2.0, 0.5, 0.0);
+  s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  return s;
+}
+
+}  // namespace
+
+TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.alive_bonus = 2.0;
+  cfg.forward_weight = 0.5;
+  cfg.lateral_weight = 0.3;
+  cfg.control_weight = 0.01;
+  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  const double dt = 1.0 / 30.0;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
+
+  // No contact and no joint motion in one step: the root moves exactly at its velocity.
+  env->reset(flying(ch));
+  StepResult r = env->step(zero);
+  ASSERT_EQ(r.reward_terms.size(), 4u);
+  EXPECT_EQ(r.reward_terms[0].first, "alive");
+  EXPECT_EQ(r.reward_terms[1].first, "forward");
+  EXPECT_EQ(r.reward_terms[2].first, "lateral");
+  EXPECT_EQ(r.reward_terms[3].first, "control");
+  EXPECT_EQ(r.termination, Termination::None);
+  EXPECT_DOUBLE_EQ(term(r, "alive"), 2.0);
+  EXPECT_NEAR(term(r, "forward"), 0.5 * 2.0, 1e-9);
+  EXPECT_NEAR(term(r, "lateral"), -0.3 * (0.4 + 0.5 * dt), 1e-9);
+  EXPECT_DOUBLE_EQ(term(r, "control"), 0.0);
+  EXPECT_NEAR(r.reward(), 2.0 + 1.0 - 0.3 * (0.4 + 0.5 * dt), 1e-9);
+
+  // Control: the action as the environment reads it, clipped to +-pi with NaN as 0.
+  Eigen::VectorXd a = zero;
+  a[0] = 0.5;
+  a[1] = -1.0;
+  a[5] = 10.0;
+  a[9] = std::nan("");
+  env->reset(flying(ch));
+  r = env->step(a);
+  EXPECT_NEAR(term(r, "control"), -0.01 * (0.25 + 1.0 + kPi * kPi), 1e-12);
+  EXPECT_DOUBLE_EQ(term(r, "alive"), 2.0);
+
+  // The target-speed variant: -w |v_x - target|.
+  cfg.target_speed = 3.0;
+  auto target = make_humanoid_forward_env(ch, nullptr, cfg);
+  target->reset(flying(ch));
+  EXPECT_NEAR(term(target->step(zero), "forward"), -0.5 * std::abs(2.0 - 3.0), 1e-9);
+}
+
+TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  auto env =
+      make_humanoid_forward_env(ch, motion(ch, "humanoid3d_kick.txt"), HumanoidForwardConfig{});
+  EXPECT_EQ(env->reference(), nullptr);  // a non-cyclic clip cannot end episodes (no ClipEnd)
+  EXPECT_EQ(env->action_size(), 28);
+  ASSERT_EQ(env->observation_layout().size(), 2u);
+  EXPECT_EQ(env->observation_layout()[0].name, "full_state");
+  EXPECT_EQ(env->observation_layout()[1].name, "egocentric");
+  EXPECT_EQ(env->config().max_seconds, 10.0);
+
+  HumanoidForwardConfig cfg;
+  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);  // Mocap needs a clip
+  cfg.init = Init::FixedPose;
+  EXPECT_NO_THROW(make_humanoid_forward_env(ch, nullptr, cfg));
+  cfg.lateral_weight = -0.1;
+  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+  cfg.lateral_weight = 0.1;
+  cfg.init_noise = std::nan("");
+  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+}
+
+TEST(HumanoidForward, PlacingAtTheTrackStartKeepsTheMotion) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  const auto turned = moved(*walk, 2.0, Vec3(5, -3, 0));
+  const InitState a = place_at_track_start(init_state_from_clip(*walk, 0.4));
+  const InitState b = place_at_track_start(init_state_from_clip(*turned, 0.4));
+  for (const InitState* s : {&a, &b}) {
+    EXPECT_NEAR(s->pose.root_pos.x(), 0.0, 1e-12);
+    EXPECT_NEAR(s->pose.root_pos.y(), 0.0, 1e-12);
+    EXPECT_NEAR(heading_angle(s->pose.rot[0]), 0.0, 1e-9);
+  }
+  EXPECT_NEAR(b.pose.root_pos.z(), walk->sample(0.4).root_pos.z(), 1e-9);
+  // The same state wherever the clip was: the turn is undone for pose and velocities alike.
+  EXPECT_LT(rotation_distance(a.pose.rot[0], b.pose.rot[0]), 1e-9);
+  EXPECT_LT(max_joint_difference(a.pose, b.pose), 1e-9);
+  EXPECT_TRUE(a.velocity.root_lin.isApprox(b.velocity.root_lin, 1e-9));
+  EXPECT_TRUE(a.velocity.root_ang.isApprox(b.velocity.root_ang, 1e-9));
+  EXPECT_GT(a.velocity.root_lin.x(), 0.5);  // walking forward, i.e. along +X
+}
+
+TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  // A clip facing elsewhere and away from the origin: starts must still be at the track's start.
+  const auto walk = moved(*motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
+  auto env = make_humanoid_forward_env(ch, walk, HumanoidForwardConfig{});
+  std::vector<Pose> starts;
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    std::mt19937_64 rng(seed);
+    env->reset(rng);
+    const Pose p = env->world().pose();
+    EXPECT_NEAR(p.root_pos.x(), 0.0, 1e-9);
+    EXPECT_NEAR(p.root_pos.y(), 0.0, 1e-9);
+    EXPECT_GT(p.root_pos.z(), 0.7);
+    EXPECT_NEAR(heading_angle(p.rot[0]), 0.0, 1e-6);
+    EXPECT_GT(env->world().data()->qvel[0], 0.5)
+        << "seed " << seed;  // the clip's walking speed, along +X
+    starts.push_back(p);
+  }
+  EXPECT_GT(max_joint_difference(starts[0], starts[1]), 0.1);
+  EXPECT_GT(max_joint_difference(starts[1], starts[2]), 0.1);
+  // The same draw gives the same start.
+  std::mt19937_64 rng(2);
+  env->reset(rng);
+  EXPECT_LT(max_joint_difference(env->world().pose(), starts[1]), 1e-12);
+}
+
+TEST(HumanoidForward, FixedPoseStartsAreTheRestPoseUpToNoise) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.init_noise = 0.02;
+  auto env = make_humanoid_forward_env(ch, motion(ch, "humanoid3d_walk.txt"), cfg);
+  const Pose rest = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3));
+  std::vector<Pose> starts;
+  for (const std::uint64_t seed : {1u, 2u}) {
+    std::mt19937_64 rng(seed);
+    env->reset(rng);
+    const Pose p = env->world().pose();
+    EXPECT_TRUE(p.root_pos.isApprox(rest.root_pos, 1e-12));
+    EXPECT_LT(rotation_distance(p.rot[0], Quat::Identity()), 1e-12);
+    EXPECT_LE(max_joint_difference(p, rest),
+              std::sqrt(3.0) * 0.02 + 1e-9);  // per-axis noise of 0.02
+    const mjModel* m = env->world().model();
+    for (int i = 0; i < m->nv; ++i) EXPECT_EQ(env->world().data()->qvel[i], 0.0);
+    starts.push_back(p);
+  }
+  EXPECT_GT(max_joint_difference(starts[0], starts[1]), 1e-4);  // the noise differs per draw
+  cfg.init_noise = 0.0;
+  auto exact = make_humanoid_forward_env(ch, nullptr, cfg);
+  std::mt19937_64 rng(5);
+  exact->reset(rng);
+  EXPECT_LT(max_joint_difference(exact->world().pose(), rest), 1e-12);
+}
+
+namespace {
+
+// Steps with zero actions until the episode ends; returns the number of steps.
+int run_zero_actions(CharacterEnv& env, StepResult& last) {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
+  int steps = 0;
+  do {
+    last = env.step(zero);
+    ++steps;
+  } while (!last.done());
+  return steps;
+}
+
+}  // namespace
+
+TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto kick = motion(ch, "humanoid3d_kick.txt");  // non-cyclic, 1.53 s
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.max_seconds = 2.0;
+  // Standing at rest with zero actions lasts, past the end of the clip, to the limit.
+  auto env = make_humanoid_forward_env(ch, kick, cfg);
+  std::mt19937_64 rng(1);
+  env->reset(rng);
+  StepResult r;
+  EXPECT_EQ(run_zero_actions(*env, r), 60);
+  EXPECT_EQ(r.termination, Termination::TimeLimit);
+  EXPECT_FALSE(is_failure(r.termination));
+  EXPECT_GT(env->world().pose().root_pos.z(), 0.8);
+  // Mocap starts count the limit from the episode's start, not from the clip time drawn (zero
+  // actions topple a walking pose only after about 1 s).
+  cfg.init = Init::Mocap;
+  cfg.max_seconds = 0.5;
+  auto mocap = make_humanoid_forward_env(ch, motion(ch, "humanoid3d_walk.txt"), cfg);
+  for (const std::uint64_t seed : {1u, 2u}) {
+    std::mt19937_64 draw(seed);
+    mocap->reset(draw);
+    EXPECT_EQ(run_zero_actions(*mocap, r), 15) << "seed " << seed;
+    EXPECT_EQ(r.termination, Termination::TimeLimit);
+  }
+}
+
+TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.max_seconds = 3.0;
+  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  // Standing but pitched 0.8 rad forward and held rigid by zero actions: it topples onto its face.
+  InitState s{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.05)), PoseVelocity{},
+              0.0};
+  s.pose.rot[0] = axis_rotation('y', 0.8);
+  s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+  env->reset(s);
+  StepResult r;
+  run_zero_actions(*env, r);
+  EXPECT_EQ(r.termination, Termination::Fall);
+  EXPECT_TRUE(is_failure(r.termination));
+  EXPECT_LT(env->elapsed(), 2.0);
+}

@@ -1,0 +1,37 @@
+#pragma once
+// A tiny environment for trainer tests: the observation is (step / 10, 1), one action, reward
+// 1 - a^2 (so the best policy outputs 0); episodes end by a time limit or by a "fall" at fixed
+// steps, and can be made to emit a NaN reward.
+#include <cmath>
+
+#include "env/env.hpp"
+
+namespace mimic::test {
+
+class ToyEnv : public Env {
+ public:
+  explicit ToyEnv(int limit = 3, int fall_at = 0, int nan_at = 0) : limit_(limit), fall_at_(fall_at), nan_at_(nan_at) {}
+  int observation_size() const override { return 2; }
+  int action_size() const override { return 1; }
+  std::vector<ObservationSlice> observation_layout() const override { return {{"toy", 0, 2}}; }
+  Eigen::VectorXd reset(std::mt19937_64& rng) override {
+    t_ = 0;
+    (void)rng();
+    return obs();
+  }
+  StepResult step(const Eigen::VectorXd& a) override {
+    ++t_;
+    StepResult r;
+    r.observation = obs();
+    r.reward_terms = {{"toy", nan_at_ > 0 && t_ == nan_at_ ? std::nan("") : 1.0 - a[0] * a[0]}};
+    if (fall_at_ > 0 && t_ == fall_at_) r.termination = Termination::Fall;
+    else if (t_ >= limit_) r.termination = Termination::TimeLimit;
+    return r;
+  }
+
+ private:
+  Eigen::VectorXd obs() const { return Eigen::Vector2d(t_ / 10.0, 1.0); }
+  int limit_, fall_at_, nan_at_, t_ = 0;
+};
+
+}  // namespace mimic::test

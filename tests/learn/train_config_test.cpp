@@ -1,0 +1,122 @@
+// Training configs: defaults, every section read, and errors that name the key and the line.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "env/env_factory.hpp"
+#include "learn/train_config.hpp"
+
+using namespace mimic;
+
+namespace {
+// The message of the ParseError `text` raises (fails the test when it parses).
+std::string error_of(const std::string& text) {
+  try {
+    (void)parse_train_config(text, "run.yaml");
+  } catch (const ParseError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return "";
+}
+}  // namespace
+
+TEST(TrainConfig, ReadsEverySection) {
+  const TrainConfig c = parse_train_config(
+      "seed: 7\niterations: 3\ncheckpoint_every: 2\ntensorboard: false\n"
+      "env: {name: planar_walker, max_steps: 50}\n"
+      "policy: {hidden: [32, 16], activation: relu, init: truncated_normal, init_std: 0.1, output_scale: 0.02,\n"
+      "         log_std: -2, learn_std: false, history: 4, gru_size: 8}\n"
+      "value: {hidden: [8], history: 4}\n"
+      "ppo: {gamma: 0.95, lambda: 0.9, clip: 0.1, epochs: 3, value_epochs: 2, minibatch: 32, entropy: 0.001,\n"
+      "      value_clip: 0.2, max_grad_norm: 1, kl_target: 0.02, kl_penalty: true, kl_beta: 3, kl_stop: 0}\n"
+      "optimizer: {kind: sgd, policy_lr: 2.5e-6, value_lr: 0.01, momentum: 0.8, schedule: linear, final_fraction: 0.1}\n"
+      "collect: {envs: 4, threads: 2, samples: 64, mode: episodes, episodes: 10}\n"
+      "normalize: {observations: false, clip: 5, rewards: true}\n"
+      "rewards: [{source: env, weight: 0.5}]\n",
+      "test");
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_EQ(c.iterations, 3);
+  EXPECT_EQ(c.checkpoint_every, 2);
+  EXPECT_FALSE(c.tensorboard);
+  EXPECT_EQ(c.env["max_steps"].as<int>(), 50);
+  EXPECT_EQ(c.policy.net.hidden, (std::vector<int>{32, 16}));
+  EXPECT_EQ(c.policy.net.activation, "relu");
+  EXPECT_EQ(c.policy.net.init, "truncated_normal");
+  EXPECT_DOUBLE_EQ(c.policy.net.output_scale, 0.02);
+  EXPECT_DOUBLE_EQ(c.policy.log_std, -2);
+  EXPECT_FALSE(c.policy.learn_std);
+  EXPECT_EQ(c.policy.net.history, 4);
+  EXPECT_EQ(c.value.hidden, std::vector<int>{8});
+  EXPECT_DOUBLE_EQ(c.value.output_scale, 1.0);  // the value head's default gain
+  EXPECT_DOUBLE_EQ(c.ppo.gamma, 0.95);
+  EXPECT_EQ(c.ppo.value_epochs, 2);
+  EXPECT_TRUE(c.ppo.kl_penalty);
+  EXPECT_DOUBLE_EQ(c.ppo.kl_stop, 0);
+  EXPECT_EQ(c.optimizer.kind, "sgd");
+  EXPECT_DOUBLE_EQ(c.optimizer.policy_lr, 2.5e-6);
+  EXPECT_EQ(c.optimizer.schedule, "linear");
+  EXPECT_EQ(c.collect.mode, "episodes");
+  EXPECT_EQ(c.collect.episodes, 10);
+  EXPECT_FALSE(c.normalize.observations);
+  EXPECT_TRUE(c.normalize.rewards);
+  ASSERT_EQ(c.rewards.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.rewards[0].weight, 0.5);
+}
+
+TEST(TrainConfig, DefaultsFollowSeed002) {
+  const TrainConfig c = parse_train_config("env: {name: planar_walker}\n", "test");
+  EXPECT_EQ(c.policy.net.hidden, (std::vector<int>{64, 64}));
+  EXPECT_DOUBLE_EQ(c.policy.log_std, -1.0);
+  EXPECT_DOUBLE_EQ(c.optimizer.policy_lr, 3e-4);
+  EXPECT_DOUBLE_EQ(c.optimizer.value_lr, 1e-3);
+  EXPECT_DOUBLE_EQ(c.ppo.kl_target, 0.01);
+  EXPECT_DOUBLE_EQ(c.ppo.kl_stop, 4.0);
+  EXPECT_EQ(c.rewards.size(), 1u);
+  EXPECT_EQ(c.rewards[0].source, "env");
+}
+
+TEST(TrainConfig, ErrorsNameTheKeyAndTheLine) {
+  {
+    const std::string e = error_of("env: {name: planar_walker}\nppo:\n  clip: 0.2\n  epoch: 3\n");
+    EXPECT_NE(e.find("run.yaml:4"), std::string::npos) << e;
+    EXPECT_NE(e.find("unknown key 'ppo.epoch'"), std::string::npos) << e;
+    EXPECT_NE(e.find("epochs"), std::string::npos) << e;  // the known keys are listed
+  }
+  {
+    const std::string e = error_of("env: {name: planar_walker}\npolicy:\n  hidden: [64, big]\n");
+    EXPECT_NE(e.find("run.yaml:3"), std::string::npos) << e;
+    EXPECT_NE(e.find("'policy.hidden'"), std::string::npos) << e;
+  }
+  EXPECT_NE(error_of("ppo: {gamma: 1.5}\n").find("'ppo.gamma': 1.5 is outside [0, 1]"), std::string::npos);
+  EXPECT_NE(error_of("policy: {activation: sigmoid}\n").find("'policy.activation': 'sigmoid' is not one of tanh, relu"), std::string::npos);
+  EXPECT_NE(error_of("normalize: {rewards: maybe}\n").find("'normalize.rewards': expected true or false"), std::string::npos);
+  EXPECT_NE(error_of("iterations: ten\n").find("'iterations': expected an integer"), std::string::npos);
+  EXPECT_NE(error_of("ppo: 3\n").find("'ppo': expected a mapping"), std::string::npos);
+  EXPECT_NE(error_of("collect: {envs: 8, samples: 4}\n").find("'collect.samples' (4) must be at least 'collect.envs' (8)"), std::string::npos);
+  EXPECT_NE(error_of("collect: {mode: episodes}\n").find("'collect.episodes' must be >= 1"), std::string::npos);
+  EXPECT_NE(error_of("seed: 1\nsead: 2\n").find("unknown key 'sead'"), std::string::npos);
+  EXPECT_NE(error_of("- a\n- b\n").find("a training config is a mapping"), std::string::npos);
+  EXPECT_NE(error_of("ppo: {clip: [0.2\n").find("not valid YAML"), std::string::npos);
+  EXPECT_NE(error_of("rewards: [{weight: 1}]\n").find("missing 'source'"), std::string::npos);
+}
+
+TEST(TrainConfig, EnvironmentSectionsAreCheckedByTheFactory) {
+  const YamlReader r("run.yaml");
+  auto env_error = [&](const std::string& text) -> std::string {
+    try {
+      (void)make_env_factory(r.parse(text, "bad"), r);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(env_error("{name: walker3d}").find("'env.name': 'walker3d' is not one of"), std::string::npos);
+  EXPECT_NE(env_error("{name: planar_walker, max_step: 3}").find("unknown key 'env.max_step'"), std::string::npos);
+  EXPECT_NE(env_error("{max_steps: 3}").find("missing 'name'"), std::string::npos);
+  EXPECT_NE(env_error("{name: reacher, links: 4}").find("'env.links': 4 is outside [2, 3]"), std::string::npos);
+  EXPECT_NE(env_error("{name: humanoid_forward, character: /nonexistent/h.txt}").find("/nonexistent/h.txt not found"), std::string::npos);
+  const EnvFactory f = make_env_factory(r.parse("{name: reacher, links: 3, observation: ee_to_target}", ""), r);
+  const auto env = f();
+  EXPECT_EQ(env->action_size(), 3);
+  EXPECT_EQ(env->observation_size(), 2);
+}
