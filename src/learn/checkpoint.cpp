@@ -42,6 +42,13 @@ void set_rng(Rng& rng, const std::string& text, const std::string& what) {
   if (!is) throw Error("generator state '" + what + "' is unreadable");
 }
 
+// A fresh tensor per key: reading into a used one would try to resize the archive's storage.
+torch::Tensor get(InputArchive& a, const std::string& key) {
+  torch::Tensor t;
+  a.read(key, t);
+  return t;
+}
+
 void write_normalizer(OutputArchive& a, const std::string& key, const RunningNormalizer& n) {
   OutputArchive sub;
   sub.write("count", torch::tensor(n.count(), torch::kFloat64));
@@ -52,11 +59,7 @@ void write_normalizer(OutputArchive& a, const std::string& key, const RunningNor
 void read_normalizer(InputArchive& a, const std::string& key, RunningNormalizer& n) {
   InputArchive sub;
   a.read(key, sub);
-  torch::Tensor count, mean, m2;
-  sub.read("count", count);
-  sub.read("mean", mean);
-  sub.read("m2", m2);
-  n.set_state(count.item<double>(), tensor_vec(mean), tensor_vec(m2));
+  n.set_state(get(sub, "count").item<double>(), tensor_vec(get(sub, "mean")), tensor_vec(get(sub, "m2")));
 }
 
 }  // namespace
@@ -107,23 +110,16 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
     std::istringstream in(read_text_file(path));
     InputArchive a;
     a.load_from(in);
-    torch::Tensor x;
-    a.read("format", x);
-    if (x.item<std::int64_t>() != kFormat)
-      throw Error("checkpoint format " + std::to_string(x.item<std::int64_t>()) + ", this mimic reads " + std::to_string(kFormat));
-    a.read("input_size", x);
-    const auto in_size = x.item<std::int64_t>();
-    a.read("action_size", x);
-    const auto act_size = x.item<std::int64_t>();
+    const auto format = get(a, "format").item<std::int64_t>();
+    if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
+    const auto in_size = get(a, "input_size").item<std::int64_t>();
+    const auto act_size = get(a, "action_size").item<std::int64_t>();
     if (in_size != t.collector->input_size() || act_size != t.collector->action_size())
       throw Error("saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
                   std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size()));
-    a.read("iteration", x);
-    t.iteration = static_cast<int>(x.item<std::int64_t>());
-    a.read("samples", x);
-    t.samples = x.item<std::int64_t>();
-    a.read("wall_seconds", x);
-    t.wall_seconds = x.item<double>();
+    t.iteration = static_cast<int>(get(a, "iteration").item<std::int64_t>());
+    t.samples = get(a, "samples").item<std::int64_t>();
+    t.wall_seconds = get(a, "wall_seconds").item<double>();
     InputArchive policy, value, policy_opt, value_opt, rngs, sources;
     a.read("policy", policy);
     a.read("value", value);
@@ -133,23 +129,15 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
     t.learner->value()->load(value);
     t.learner->policy_optimizer().load(policy_opt);
     t.learner->value_optimizer().load(value_opt);
-    a.read("kl_beta", x);
-    t.learner->kl().set_beta(x.item<double>());
+    t.learner->kl().set_beta(get(a, "kl_beta").item<double>());
     read_normalizer(a, "obs_norm", t.obs_norm);
     read_normalizer(a, "return_norm", t.return_norm);
     a.read("rng", rngs);
-    rngs.read("noise", x);
-    set_rng(t.noise_rng, tensor_bytes(x), "noise");
-    rngs.read("shuffle", x);
-    set_rng(t.shuffle_rng, tensor_bytes(x), "shuffle");
-    rngs.read("envs", x);
-    std::vector<std::string> env_states(static_cast<std::size_t>(x.item<std::int64_t>()));
-    for (std::size_t i = 0; i < env_states.size(); ++i) {
-      rngs.read("env" + std::to_string(i), x);
-      env_states[i] = tensor_bytes(x);
-    }
+    set_rng(t.noise_rng, tensor_bytes(get(rngs, "noise")), "noise");
+    set_rng(t.shuffle_rng, tensor_bytes(get(rngs, "shuffle")), "shuffle");
+    std::vector<std::string> env_states(static_cast<std::size_t>(get(rngs, "envs").item<std::int64_t>()));
+    for (std::size_t i = 0; i < env_states.size(); ++i) env_states[i] = tensor_bytes(get(rngs, "env" + std::to_string(i)));
     t.collector->set_rng_states(env_states);
-    rngs.read("torch", x);
     a.read("reward_sources", sources);
     for (std::size_t i = 0; i < t.rewards.size(); ++i) {
       InputArchive s;

@@ -37,7 +37,7 @@ void check_finite(const torch::Tensor& loss, const char* what, int iteration, in
   const double v = loss.item<double>();
   if (!std::isfinite(v))
     throw TrainingDiverged("iteration " + std::to_string(iteration) + ", epoch " + std::to_string(epoch + 1) + ": the " + what +
-                           " loss is " + std::to_string(v) + "; stopping without saving (the last checkpoint is kept). "
+                           " loss is " + (std::isnan(v) ? "NaN" : "infinite") + "; stopping without saving (the last checkpoint is kept). "
                            "Lower the learning rate or check the environment's rewards and observations.");
 }
 
