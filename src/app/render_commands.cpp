@@ -2,6 +2,7 @@
 #include <spdlog/spdlog.h>
 
 #include "app/commands.hpp"
+#include "app/policy_video.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/planar_walker.hpp"
@@ -37,8 +38,8 @@ void add_render_commands(CLI::App& app) {
     ClipVideoOptions video;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* render = app.add_subcommand("render", "video (.mp4 or .gif) of a clip played on a simulated character");
-  render->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
+  CLI::App* render = app.add_subcommand("render", "video (.mp4 or .gif) of a clip played on a simulated character, or of a trained policy");
+  render->add_option("input", args->input, "motion file, or a training run directory (its policy acting)")->required()->check(CLI::ExistingPath);
   render->add_option("-o,--output", args->output, "output .mp4 or .gif")->required();
   render->add_flag("--ghost", args->video.ghost, "also draw the clip as a translucent ghost beside the character");
   render->add_option("--seconds", args->video.seconds, "length (default: the clip's duration)");
@@ -46,6 +47,15 @@ void add_render_commands(CLI::App& app) {
   render->add_option("--height", args->video.height, "pixels")->capture_default_str()->check(CLI::Range(16, 720));
   add_load_options(*render, args->load);
   render->callback([args] {
+    if (std::filesystem::is_directory(args->input)) {
+      PolicyVideoOptions o;
+      o.width = args->video.width, o.height = args->video.height;
+      if (args->video.seconds > 0) o.seconds = args->video.seconds;
+      const PolicyVideoStats s = render_policy_video(args->input, args->output, o);
+      spdlog::info("wrote {} ({} frames at {:.1f} fps); {} episode(s) ended", args->output.string(), s.frames, s.fps, s.episodes.size());
+      for (const auto& [ret, why] : s.episodes) spdlog::info("  episode return {:.2f}, ended by {}", ret, to_string(why));
+      return;
+    }
     const Clip clip = load_motion(args->input, args->load);
     const CharacterModel ch = character_for(clip, args->input, args->load);
     const int frames = render_clip_video(ch, clip, args->output, args->video);

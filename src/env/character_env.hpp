@@ -53,6 +53,8 @@ class CharacterEnv : public Env {
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
   Eigen::VectorXd reset(const InitState& init);
   StepResult step(const Eigen::VectorXd& action) override;
+  const mjModel_* physics_model() const override { return world_.model(); }
+  mjData_* physics_data() const override { return world_.data(); }
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
   void add_reward_term(std::string name, RewardTerm term) { rewards_.emplace_back(std::move(name), std::move(term)); }

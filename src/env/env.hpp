@@ -7,6 +7,9 @@
 #include <utility>
 #include <vector>
 
+struct mjModel_;
+struct mjData_;
+
 namespace mimic {
 
 enum class Termination {
@@ -47,6 +50,9 @@ class Env {
   virtual Eigen::VectorXd reset(std::mt19937_64& rng) = 0;
   // One control step. Actions outside the documented range are clipped, never rejected.
   virtual StepResult step(const Eigen::VectorXd& action) = 0;
+  // The MuJoCo model and state behind the environment, for rendering; null when there is none.
+  virtual const mjModel_* physics_model() const { return nullptr; }
+  virtual mjData_* physics_data() const { return nullptr; }
 };
 
 }  // namespace mimic

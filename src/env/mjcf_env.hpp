@@ -23,6 +23,8 @@ class MjcfEnv : public Env {
   MjcfEnv& operator=(const MjcfEnv&) = delete;
 
   int action_size() const override;
+  const mjModel_* physics_model() const override { return m_; }
+  mjData_* physics_data() const override { return d_; }
 
   const std::string& name() const { return name_; }
   const mjModel_* model() const { return m_; }

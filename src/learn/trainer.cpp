@@ -222,6 +222,17 @@ const TrainConfig& Trainer::config() const { return impl_->cfg; }
 void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(*impl_, path); }
 void Trainer::load_checkpoint(const std::filesystem::path& path) { read_checkpoint(*impl_, path); }
 
+std::unique_ptr<Env> Trainer::make_env() const { return impl_->factory(); }
+
+Eigen::VectorXd Trainer::act(const Eigen::VectorXd& input) const {
+  if (input.size() != impl_->collector->input_size())
+    throw Error("policy input has " + std::to_string(input.size()) + " values, expected " + std::to_string(impl_->collector->input_size()));
+  torch::NoGradGuard no_grad;
+  const Eigen::VectorXf x = impl_->obs_norm.normalize_one(input).cast<float>();
+  const torch::Tensor mean = impl_->learner->policy()->forward(torch::from_blob(const_cast<float*>(x.data()), {1, x.size()}, torch::kFloat32)).first.contiguous();
+  return Eigen::Map<const Eigen::VectorXf>(mean.data_ptr<float>(), mean.size(1)).cast<double>();
+}
+
 double Trainer::evaluate(int episodes, std::uint64_t seed) {
   Collector eval(impl_->factory, std::min(episodes, impl_->cfg.collect.envs), impl_->cfg.collect.threads, impl_->cfg.policy.net.history, seed);
   std::mt19937_64 rng(seed);

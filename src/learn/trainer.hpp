@@ -52,6 +52,11 @@ class Trainer {
   // uses its own environments and generator, so training is not disturbed.
   double evaluate(int episodes, std::uint64_t seed = 12345);
 
+  // Acting outside training (evaluation, videos, embedding): a new environment as the run trains
+  // in, and the policy's mean action for a raw policy input (`history` frames, oldest first).
+  std::unique_ptr<Env> make_env() const;
+  Eigen::VectorXd act(const Eigen::VectorXd& input) const;
+
   struct Impl;
   Impl& impl() { return *impl_; }  // for tests and benchmarks that reach the networks
 

@@ -1,0 +1,81 @@
+// mimic render RUN: a trained policy acting in its environment (mean actions), filmed with
+// MuJoCo's offscreen renderer. Episodes that end start again, so falls stay visible.
+#include <mujoco/mujoco.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <deque>
+
+#include "app/policy_video.hpp"
+#include "core/error.hpp"
+#include "learn/trainer.hpp"
+#include "render/offscreen.hpp"
+#include "render/video_writer.hpp"
+
+namespace mimic::app {
+
+PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
+  const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
+  if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))
+    throw Error(run.string() + ": not a training run (needs config.yaml and checkpoint.pt)");
+  Trainer trainer(load_train_config(config));
+  trainer.load_checkpoint(checkpoint);
+  const std::unique_ptr<Env> env = trainer.make_env();
+  mjData* const data = env->physics_data();
+  if (!env->physics_model() || !data) throw Error(run.string() + ": its environment has nothing to draw");
+  const int history = trainer.config().policy.net.history;
+  const int frame = env->observation_size();
+
+  std::mt19937_64 rng(opts.seed);
+  std::deque<Eigen::VectorXd> frames;
+  auto start_episode = [&] {
+    const Eigen::VectorXd obs = env->reset(rng);
+    frames.assign(static_cast<std::size_t>(history), obs);
+  };
+  start_episode();
+  // Steps per video frame: the control rate measured on the first step, brought near opts.fps.
+  const double t0 = data->time;
+  auto input = [&] {
+    Eigen::VectorXd x(history * frame);
+    for (int f = 0; f < history; ++f) x.segment(f * frame, frame) = frames[static_cast<std::size_t>(f)];
+    return x;
+  };
+  PolicyVideoStats stats;
+  StepResult r = env->step(trainer.act(input()));
+  const double control_dt = data->time - t0;
+  if (!(control_dt > 0)) throw Error("environment time does not advance");
+  const int every = std::max(1, static_cast<int>(std::lround(1.0 / (opts.fps * control_dt))));
+  const double fps = 1.0 / (every * control_dt);
+  const int steps = static_cast<int>(std::lround(opts.seconds / control_dt));
+
+  OffscreenRenderer renderer(env->physics_model(), opts.width, opts.height);
+  VideoWriter video(out, opts.width, opts.height, fps);
+  std::vector<std::uint8_t> rgb;
+  Eigen::Vector3d smoothed = Eigen::Vector3d::Zero();
+  double episode_return = 0;
+  for (int t = 1; t <= steps; ++t) {
+    if (t > 1) r = env->step(trainer.act(input()));
+    episode_return += r.reward();
+    frames.pop_front();
+    frames.push_back(r.observation);
+    const Eigen::Vector3d root(data->xpos[3], data->xpos[4], data->xpos[5]);  // body 1: the root
+    smoothed = t == 1 ? root : 0.9 * smoothed + 0.1 * root;
+    if (t % every == 0) {
+      CameraSpec cam = opts.camera;
+      cam.lookat = Vec3(smoothed.x(), smoothed.y(), opts.camera.lookat.z());
+      renderer.render(data, cam, rgb);
+      video.write(rgb);
+    }
+    if (r.done()) {
+      stats.episodes.push_back({episode_return, r.termination});
+      episode_return = 0;
+      start_episode();
+    }
+  }
+  video.close();
+  stats.frames = video.frames();
+  stats.fps = fps;
+  return stats;
+}
+
+}  // namespace mimic::app

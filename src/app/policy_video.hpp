@@ -1,0 +1,28 @@
+#pragma once
+// Videos of trained policies (mimic render RUN).
+#include <filesystem>
+#include <vector>
+
+#include "env/env.hpp"
+#include "render/offscreen.hpp"
+
+namespace mimic::app {
+
+struct PolicyVideoOptions {
+  double seconds = 10.0;
+  double fps = 30.0;  // approximate: a whole number of control steps per frame
+  int width = 640, height = 480;
+  std::uint64_t seed = 1;
+  CameraSpec camera{Vec3(0, 0, 0.9), 4.0, 90.0, -12.0};  // lookat z: height of the point followed
+};
+
+struct PolicyVideoStats {
+  int frames = 0;
+  double fps = 0;
+  std::vector<std::pair<double, Termination>> episodes;  // return and ending of each episode that ended
+};
+
+// Plays RUN/checkpoint.pt (config RUN/config.yaml) deterministically and writes `out` (.mp4/.gif).
+PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts);
+
+}  // namespace mimic::app
