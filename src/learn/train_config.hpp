@@ -22,6 +22,7 @@ struct NetworkConfig {
 };
 
 struct PolicyConfig {
+  PolicyConfig() { net.output_scale = 0.01; }  // small initial actions (the value head keeps 1)
   NetworkConfig net;
   double log_std = -1.0;   // initial log sigma (seed 002: -1; seed 000: e^-1..1)
   bool learn_std = true;   // false: fixed diagonal covariance (SFV)

@@ -164,6 +164,20 @@ TEST(Trainer, ResumesAfterAKillInTheMiddleOfAnIterationAsIfNeverKilled) {
   EXPECT_EQ(event_files, 2);
 }
 
+TEST(Trainer, AStopRequestEndsTheRunWithACheckpoint) {
+  const auto dir = test::temp_dir("trainer_stop");
+  TrainOptions o;
+  o.run_dir = dir;
+  int polls = 0;
+  o.stop_requested = [&] { return ++polls > 2; };  // as SIGINT after two iterations
+  Trainer t(config(walker_config(10, 1)), o);
+  t.run();
+  EXPECT_EQ(t.iteration(), 2);
+  Trainer check(config(walker_config(10, 1)));
+  check.load_checkpoint(dir / "checkpoint.pt");
+  EXPECT_EQ(check.iteration(), 2);
+}
+
 TEST(Trainer, RefusesToOverwriteARunAndToResumeNothing) {
   const auto dir = test::temp_dir("trainer_refuse");
   TrainOptions o;
