@@ -109,4 +109,4 @@ run_fails("typo.yaml:3: unknown key 'ppo.epochz'" train ${OUT}/typo.yaml -o ${OU
 file(WRITE ${OUT}/walker_run_broken/checkpoint.pt "garbage")
 file(COPY ${OUT}/walker.yaml DESTINATION ${OUT}/walker_run_broken)
 file(RENAME ${OUT}/walker_run_broken/walker.yaml ${OUT}/walker_run_broken/config.yaml)
-run_fails("checkpoint.pt: not a readable mimic checkpoint" train ${OUT}/walker.yaml -o ${OUT}/walker_run_broken --resume)
+run_fails("checkpoint.pt: not a mimic checkpoint" train ${OUT}/walker.yaml -o ${OUT}/walker_run_broken --resume)

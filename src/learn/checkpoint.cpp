@@ -107,7 +107,16 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
   const std::string where = path.string();
   if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
   try {
-    std::istringstream in(read_text_file(path));
+    const std::string bytes = read_text_file(path);
+    // LibTorch's archives are zip files; anything else is refused here (LibTorch's zip reader
+    // leaks memory on non-zip input, and "not a zip archive" says more).
+    if (bytes.size() < 22 || bytes.compare(0, 4, "PK\x03\x04") != 0)
+      throw Error("not a mimic checkpoint (not a LibTorch zip archive" + std::string(bytes.empty() ? ": empty file" : "") + ")");
+    // A cut file (an interrupted copy, a full disk) has lost the zip's closing directory record.
+    const std::size_t tail = bytes.size() > 65557 ? bytes.size() - 65557 : 0;
+    if (bytes.rfind("PK\x05\x06") == std::string::npos || bytes.rfind("PK\x05\x06") < tail)
+      throw Error("checkpoint is truncated (its zip directory is missing): " + std::to_string(bytes.size()) + " bytes");
+    std::istringstream in(bytes);
     InputArchive a;
     a.load_from(in);
     const auto format = get(a, "format").item<std::int64_t>();
