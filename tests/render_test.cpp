@@ -1,12 +1,14 @@
 // Rendering: offscreen frames and videos of the expected length.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "core/error.hpp"
 #include "motion/builtin.hpp"
 #include "render/clip_video.hpp"
+#include "render/line_chart.hpp"
 #include "render/offscreen.hpp"
 #include "sim/world.hpp"
 #include "test_data.hpp"
@@ -77,4 +79,25 @@ TEST(Render, ClipThatDoesNotFitTheCharacterIsAnError) {
   Skeleton small = jack.skeleton;
   small.joints.resize(3);
   EXPECT_THROW(render_clip_video(CharacterModel::from_skeleton(small, "small"), jack, test::temp_dir("render_bad") / "x.mp4"), Error);
+}
+
+TEST(LineChart, TicksAreRoundNumbersCoveringTheRange) {
+  EXPECT_EQ(mimic::chart_ticks(0, 1000, 5), (std::vector<double>{0, 200, 400, 600, 800, 1000}));
+  EXPECT_EQ(mimic::chart_ticks(2.6, 4685, 5), (std::vector<double>{1000, 2000, 3000, 4000}));
+  // 0.55 / 5 = 0.11 per tick, rounded up to a step of 0.2.
+  EXPECT_EQ(mimic::chart_ticks(-0.3, 0.25, 5), (std::vector<double>{-0.2, 0, 0.2}));
+}
+
+TEST(LineChart, DrawsEverySeriesWithGapsAtMissingValues) {
+  mimic::LineChart c;
+  c.title = "return <vs> samples";
+  c.series = {{"a", {0, 1, 2, 3}, {1, 2, NAN, 4}}, {"b", {0, 1}, {0, 3}}};
+  const std::string svg = mimic::line_chart_svg(c);
+  std::size_t polylines = 0;
+  for (std::size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++polylines;
+  EXPECT_EQ(polylines, 3u);  // series a is split by its NaN
+  EXPECT_NE(svg.find("return &lt;vs&gt; samples"), std::string::npos);
+  EXPECT_NE(svg.find(">b</text>"), std::string::npos);
+  c.series = {{"empty", {0}, {NAN}}};
+  EXPECT_THROW(mimic::line_chart_svg(c), mimic::Error);
 }

@@ -1,0 +1,109 @@
+#include "render/line_chart.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+std::vector<double> chart_ticks(double lo, double hi, int count) {
+  if (!(hi > lo)) return {lo};
+  const double raw = (hi - lo) / std::max(1, count);
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = power;
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * power >= raw) {
+      step = m * power;
+      break;
+    }
+  std::vector<double> out;
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * step; t += step) out.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  return out;
+}
+
+namespace {
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '\'') out += "&apos;";
+    else out += c;
+  }
+  return out;
+}
+
+// 1500 -> "1.5k", 2000000 -> "2M": sample counts stay short on the axis.
+std::string label(double v) {
+  const double a = std::abs(v);
+  if (a >= 1e6) return fmt::format("{:g}M", v / 1e6);
+  if (a >= 1e4) return fmt::format("{:g}k", v / 1e3);
+  return fmt::format("{:g}", v);
+}
+
+}  // namespace
+
+std::string line_chart_svg(const LineChart& c) {
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const auto& s : c.series) {
+    if (s.x.size() != s.y.size()) throw Error("chart series '" + s.name + "': x and y differ in length");
+    for (std::size_t i = 0; i < s.x.size(); ++i)
+      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
+        x0 = std::min(x0, s.x[i]), x1 = std::max(x1, s.x[i]);
+        y0 = std::min(y0, s.y[i]), y1 = std::max(y1, s.y[i]);
+      }
+  }
+  if (!std::isfinite(x0)) throw Error("chart '" + c.title + "': no finite points to draw");
+  if (x1 == x0) x1 = x0 + 1;
+  if (y1 == y0) y1 = y0 + 1;
+  const std::vector<double> xt = chart_ticks(x0, x1), yt = chart_ticks(y0, y1);
+  const double left = 70, right = 20 + 150, top = 40, bottom = 50;  // the legend sits on the right
+  const double pw = c.width - left - right, ph = c.height - top - bottom;
+  auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
+  auto py = [&](double y) { return top + ph - (y - y0) / (y1 - y0) * ph; };
+  static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+  std::string svg = fmt::format(
+      "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' viewBox='0 0 {0} {1}' font-family='sans-serif' font-size='12'>\n"
+      "<rect width='100%' height='100%' fill='white'/>\n<text x='{2}' y='22' font-size='15'>{3}</text>\n",
+      c.width, c.height, left, escape(c.title));
+  for (double t : xt)
+    svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{0:.1f}' y2='{2:.1f}' stroke='#ddd'/><text x='{0:.1f}' y='{3:.1f}' text-anchor='middle'>{4}</text>\n",
+                       px(t), top, top + ph, top + ph + 16, label(t));
+  for (double t : yt)
+    svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{2:.1f}' y2='{1:.1f}' stroke='#ddd'/><text x='{3:.1f}' y='{4:.1f}' text-anchor='end'>{5}</text>\n",
+                       left, py(t), left + pw, left - 6, py(t) + 4, label(t));
+  svg += fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='#444'/>\n", left, top, pw, ph);
+  svg += fmt::format("<text x='{:.1f}' y='{:.1f}' text-anchor='middle'>{}</text>\n", left + pw / 2, c.height - 10.0, escape(c.x_label));
+  svg += fmt::format("<text transform='translate(16 {:.1f}) rotate(-90)' text-anchor='middle'>{}</text>\n", top + ph / 2, escape(c.y_label));
+  for (std::size_t k = 0; k < c.series.size(); ++k) {
+    const auto& s = c.series[k];
+    const char* colour = colours[k % 8];
+    std::string pts;
+    auto flush = [&] {
+      if (!pts.empty()) svg += fmt::format("<polyline fill='none' stroke='{}' stroke-width='1.6' points='{}'/>\n", colour, pts);
+      pts.clear();
+    };
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+        flush();
+        continue;
+      }
+      pts += fmt::format("{:.1f},{:.1f} ", px(s.x[i]), py(s.y[i]));
+    }
+    flush();
+    const double ly = top + 10 + 18.0 * static_cast<double>(k);
+    svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{2:.1f}' y2='{1:.1f}' stroke='{3}' stroke-width='3'/><text x='{4:.1f}' y='{5:.1f}'>{6}</text>\n",
+                       left + pw + 10, ly, left + pw + 30, colour, left + pw + 36, ly + 4, escape(s.name));
+  }
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace mimic

@@ -1,0 +1,25 @@
+#pragma once
+// Line charts as SVG (learning curves, robustness curves): series of (x, y) points on shared
+// axes with round-number ticks and a legend. Points with a non-finite y are gaps.
+#include <string>
+#include <vector>
+
+namespace mimic {
+
+struct ChartSeries {
+  std::string name;
+  std::vector<double> x, y;
+};
+
+struct LineChart {
+  std::string title, x_label, y_label;
+  std::vector<ChartSeries> series;
+  int width = 720, height = 420;
+};
+
+// The SVG text; Error when there is nothing finite to draw or x and y sizes differ.
+std::string line_chart_svg(const LineChart& chart);
+// "Nice" tick values covering [lo, hi] (1, 2 or 5 times a power of ten apart), about `count`.
+std::vector<double> chart_ticks(double lo, double hi, int count = 5);
+
+}  // namespace mimic
