@@ -11,18 +11,20 @@
 #include "motion/mirror.hpp"
 
 namespace mimic {
-namespace {
 
-std::string escape(const std::string& s) {
+std::string svg_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     if (c == '<') out += "&lt;";
     else if (c == '>') out += "&gt;";
     else if (c == '&') out += "&amp;";
+    else if (c == '\'') out += "&apos;";
     else out += c;
   }
   return out;
 }
+
+namespace {
 
 // Lines from each joint to its parent and to its sites, projected by `proj`.
 // Joints on the character's left: of each mirror pair, the one on the +Y side at rest.
@@ -90,7 +92,7 @@ std::string clip_picture_svg(const Clip& clip, const ClipPictureOptions& opts) {
   char title[400];
   std::snprintf(title, sizeof title, "%s: %d frames at %.2f Hz, %.2f s, loop %s, %d joints (%d DoF)", clip.name.c_str(),
                 clip.num_frames(), clip.fps, clip.duration(), to_string(clip.loop), clip.skeleton.num_joints(), clip.skeleton.dof_count());
-  svg += "<text x='8' y='16'>" + escape(title) + "</text>\n";
+  svg += "<text x='8' y='16'>" + svg_escape(title) + "</text>\n";
   for (int k = 0; k < panels; ++k) {
     const LinkFrames& fk = fks[static_cast<std::size_t>(k)];
     const HeadingFrame& hf = headings[static_cast<std::size_t>(k)];

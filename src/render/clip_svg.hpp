@@ -14,4 +14,7 @@ struct ClipPictureOptions {
 
 std::string clip_picture_svg(const Clip& clip, const ClipPictureOptions& opts = {});
 
+// Text made safe inside SVG elements and single-quoted attributes (< > & ').
+std::string svg_escape(const std::string& s);
+
 }  // namespace mimic

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "render/clip_svg.hpp"
 
 namespace mimic {
 
@@ -26,18 +27,6 @@ std::vector<double> chart_ticks(double lo, double hi, int count) {
 }
 
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '\'') out += "&apos;";
-    else out += c;
-  }
-  return out;
-}
 
 // 1500 -> "1.5k", 2000000 -> "2M": sample counts stay short on the axis.
 std::string label(double v) {
@@ -72,7 +61,7 @@ std::string line_chart_svg(const LineChart& c) {
   std::string svg = fmt::format(
       "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' viewBox='0 0 {0} {1}' font-family='sans-serif' font-size='12'>\n"
       "<rect width='100%' height='100%' fill='white'/>\n<text x='{2}' y='22' font-size='15'>{3}</text>\n",
-      c.width, c.height, left, escape(c.title));
+      c.width, c.height, left, svg_escape(c.title));
   for (double t : xt)
     svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{0:.1f}' y2='{2:.1f}' stroke='#ddd'/><text x='{0:.1f}' y='{3:.1f}' text-anchor='middle'>{4}</text>\n",
                        px(t), top, top + ph, top + ph + 16, label(t));
@@ -80,8 +69,8 @@ std::string line_chart_svg(const LineChart& c) {
     svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{2:.1f}' y2='{1:.1f}' stroke='#ddd'/><text x='{3:.1f}' y='{4:.1f}' text-anchor='end'>{5}</text>\n",
                        left, py(t), left + pw, left - 6, py(t) + 4, label(t));
   svg += fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='#444'/>\n", left, top, pw, ph);
-  svg += fmt::format("<text x='{:.1f}' y='{:.1f}' text-anchor='middle'>{}</text>\n", left + pw / 2, c.height - 10.0, escape(c.x_label));
-  svg += fmt::format("<text transform='translate(16 {:.1f}) rotate(-90)' text-anchor='middle'>{}</text>\n", top + ph / 2, escape(c.y_label));
+  svg += fmt::format("<text x='{:.1f}' y='{:.1f}' text-anchor='middle'>{}</text>\n", left + pw / 2, c.height - 10.0, svg_escape(c.x_label));
+  svg += fmt::format("<text transform='translate(16 {:.1f}) rotate(-90)' text-anchor='middle'>{}</text>\n", top + ph / 2, svg_escape(c.y_label));
   for (std::size_t k = 0; k < c.series.size(); ++k) {
     const auto& s = c.series[k];
     const char* colour = colours[k % 8];
@@ -100,7 +89,7 @@ std::string line_chart_svg(const LineChart& c) {
     flush();
     const double ly = top + 10 + 18.0 * static_cast<double>(k);
     svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{2:.1f}' y2='{1:.1f}' stroke='{3}' stroke-width='3'/><text x='{4:.1f}' y='{5:.1f}'>{6}</text>\n",
-                       left + pw + 10, ly, left + pw + 30, colour, left + pw + 36, ly + 4, escape(s.name));
+                       left + pw + 10, ly, left + pw + 30, colour, left + pw + 36, ly + 4, svg_escape(s.name));
   }
   svg += "</svg>\n";
   return svg;
