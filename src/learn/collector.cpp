@@ -11,7 +11,6 @@ namespace mimic {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-const double kLogSqrt2Pi = 0.5 * std::log(2.0 * 3.14159265358979323846);
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
@@ -147,7 +146,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
       const int e = active[static_cast<std::size_t>(k)];
       Slot& s = *slots_[static_cast<std::size_t>(e)];
       s.action.resize(na);
-      double logp = 0.0;
+      // The learner recomputes log-probabilities from the stored mean and log sigma.
       for (int j = 0; j < na; ++j) {
         const double mu = mean_p[k * na + j], ls = log_std_p[k * na + j];
         const double z = deterministic ? 0.0 : gauss(noise_rng);
@@ -156,14 +155,10 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
         r.action.push_back(a);
         r.mean.push_back(mean_p[k * na + j]);
         r.log_std.push_back(log_std_p[k * na + j]);
-        const double zz = (static_cast<double>(a) - mu) / std::exp(ls);
-        logp += -0.5 * zz * zz - ls - kLogSqrt2Pi;
       }
-      r.log_prob.push_back(static_cast<float>(logp));
       r.value.push_back(value_p[k]);
       for (int c = 0; c < in; ++c) r.raw_input.push_back(raw(k, c));
       r.input.insert(r.input.end(), xr.row(k).data(), xr.row(k).data() + in);
-      r.env_index.push_back(e);
       r.env_steps[static_cast<std::size_t>(e)].push_back(static_cast<int>(base) + k);
       r.env_reward.push_back(0.0);
       r.ended.push_back(0);

@@ -21,12 +21,11 @@ struct Rollout {
   std::vector<double> next_obs;   // the environment's observation after the step (the last one of an ended episode)
   std::vector<float> action, mean;  // sampled action, and the policy mean it was drawn around
   std::vector<float> log_std;       // [samples, actions]
-  std::vector<float> log_prob, value;  // under the acting policy
+  std::vector<float> value;        // V(s_t) under the acting value network
   std::vector<double> env_reward;      // the environment's task reward (sum of its terms)
   std::vector<double> reward;          // what the learner optimises (weighted reward sources)
   std::vector<double> next_value;      // V of the state after the step (bootstrap of ended/last steps)
   std::vector<std::uint8_t> ended, failed;
-  std::vector<int> env_index;
   std::vector<std::vector<int>> env_steps;
 
   // Sums of each reward term of the environment over the rollout.
