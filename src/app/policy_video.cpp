@@ -4,10 +4,10 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <deque>
 
 #include "app/policy_video.hpp"
 #include "core/error.hpp"
+#include "learn/frame_history.hpp"
 #include "learn/trainer.hpp"
 #include "render/offscreen.hpp"
 #include "render/video_writer.hpp"
@@ -24,24 +24,15 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
   mjData* const data = env->physics_data();
   if (!env->physics_model() || !data) throw Error(run.string() + ": its environment has nothing to draw");
   const int history = trainer.config().policy.net.history;
-  const int frame = env->observation_size();
 
   std::mt19937_64 rng(opts.seed);
-  std::deque<Eigen::VectorXd> frames;
-  auto start_episode = [&] {
-    const Eigen::VectorXd obs = env->reset(rng);
-    frames.assign(static_cast<std::size_t>(history), obs);
-  };
+  FrameHistory frames(history);
+  auto start_episode = [&] { frames.reset(env->reset(rng)); };
   start_episode();
   // Steps per video frame: the control rate measured on the first step, brought near opts.fps.
   const double t0 = data->time;
-  auto input = [&] {
-    Eigen::VectorXd x(history * frame);
-    for (int f = 0; f < history; ++f) x.segment(f * frame, frame) = frames[static_cast<std::size_t>(f)];
-    return x;
-  };
   PolicyVideoStats stats;
-  StepResult r = env->step(trainer.act(input()));
+  StepResult r = env->step(trainer.act(frames.stacked()));
   const double control_dt = data->time - t0;
   if (!(control_dt > 0)) throw Error("environment time does not advance");
   const int every = std::max(1, static_cast<int>(std::lround(1.0 / (opts.fps * control_dt))));
@@ -54,10 +45,9 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
   Eigen::Vector3d smoothed = Eigen::Vector3d::Zero();
   double episode_return = 0;
   for (int t = 1; t <= steps; ++t) {
-    if (t > 1) r = env->step(trainer.act(input()));
+    if (t > 1) r = env->step(trainer.act(frames.stacked()));
     episode_return += r.reward();
-    frames.pop_front();
-    frames.push_back(r.observation);
+    frames.push(r.observation);
     const Eigen::Vector3d root(data->xpos[3], data->xpos[4], data->xpos[5]);  // body 1: the root
     smoothed = t == 1 ? root : 0.9 * smoothed + 0.1 * root;
     if (t % every == 0) {

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -17,7 +16,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 // One environment's running state between steps.
 struct Collector::Slot {
   std::mt19937_64 rng;
-  std::deque<Eigen::VectorXd> frames;  // the last `history` observations, oldest first
+  FrameHistory frames;
   double episode_return = 0.0;
   int episode_length = 0;
   bool idle = false;  // episodes mode: this slot has finished its share
@@ -51,7 +50,8 @@ void Collector::reset_slot(int i) {
   const Eigen::VectorXd obs = envs_[static_cast<std::size_t>(i)]->reset(s.rng);
   if (obs.size() != frame_size_ || !obs.allFinite())
     throw Error("environment " + std::to_string(i) + ": reset gave a non-finite or wrongly sized observation");
-  s.frames.assign(static_cast<std::size_t>(history_), obs);
+  s.frames = FrameHistory(history_);
+  s.frames.reset(obs);
   s.episode_return = 0.0;
   s.episode_length = 0;
 }
@@ -126,8 +126,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
     auto t0 = Clock::now();
     Eigen::MatrixXd raw(b, in);
     for (int k = 0; k < b; ++k) {
-      const Slot& s = *slots_[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])];
-      for (int f = 0; f < history_; ++f) raw.row(k).segment(f * frame_size_, frame_size_) = s.frames[static_cast<std::size_t>(f)].transpose();
+      raw.row(k) = slots_[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])]->frames.stacked().transpose();
     }
     const Eigen::MatrixXf x = norm.normalize(raw).cast<float>();
     // Eigen is column-major: transpose into a row-major buffer for torch.
@@ -195,8 +194,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
         else it->second += v;
       }
       r.next_obs.insert(r.next_obs.end(), res.observation.data(), res.observation.data() + frame_size_);
-      s.frames.pop_front();
-      s.frames.push_back(res.observation);
+      s.frames.push(res.observation);
       s.episode_return += rew;
       ++s.episode_length;
       if (res.done()) {
@@ -205,11 +203,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
         stats_.returns.push_back(s.episode_return);
         stats_.lengths.push_back(s.episode_length);
         if (r.failed[i]) ++stats_.failures;
-        if (!r.failed[i]) {
-          Eigen::VectorXd last(in);
-          for (int f = 0; f < history_; ++f) last.segment(f * frame_size_, frame_size_) = s.frames[static_cast<std::size_t>(f)];
-          bootstrap.emplace_back(static_cast<int>(i), std::move(last));
-        }
+        if (!r.failed[i]) bootstrap.emplace_back(static_cast<int>(i), s.frames.stacked());
         if (by_episodes && started >= episodes) s.idle = true;
         else {
           if (by_episodes) ++started;
@@ -232,12 +226,8 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
     const auto& idx = r.env_steps[static_cast<std::size_t>(e)];
     for (std::size_t j = 0; j + 1 < idx.size(); ++j)
       if (!r.ended[static_cast<std::size_t>(idx[j])]) r.next_value[static_cast<std::size_t>(idx[j])] = r.value[static_cast<std::size_t>(idx[j + 1])];
-    if (!idx.empty() && !r.ended[static_cast<std::size_t>(idx.back())]) {
-      const Slot& s = *slots_[static_cast<std::size_t>(e)];
-      Eigen::VectorXd last(in);
-      for (int f = 0; f < history_; ++f) last.segment(f * frame_size_, frame_size_) = s.frames[static_cast<std::size_t>(f)];
-      bootstrap.emplace_back(idx.back(), std::move(last));
-    }
+    if (!idx.empty() && !r.ended[static_cast<std::size_t>(idx.back())])
+      bootstrap.emplace_back(idx.back(), slots_[static_cast<std::size_t>(e)]->frames.stacked());
   }
   if (!bootstrap.empty()) {
     Eigen::MatrixXd raw(static_cast<Eigen::Index>(bootstrap.size()), in);

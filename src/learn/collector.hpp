@@ -10,6 +10,7 @@
 #include "core/worker_pool.hpp"
 #include "env/env_factory.hpp"
 #include "learn/networks.hpp"
+#include "learn/frame_history.hpp"
 #include "learn/normalizer.hpp"
 #include "learn/rollout.hpp"
 
