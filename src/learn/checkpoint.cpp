@@ -83,7 +83,7 @@ void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path)
   a.write("value", value);
   a.write("policy_optimizer", policy_opt);
   a.write("value_optimizer", value_opt);
-  a.write("kl_beta", torch::tensor(const_cast<PpoLearner&>(*t.learner).kl().beta(), torch::kFloat64));
+  a.write("kl_beta", torch::tensor(t.learner->kl().beta(), torch::kFloat64));
   write_normalizer(a, "obs_norm", t.obs_norm);
   write_normalizer(a, "return_norm", t.return_norm);
   rngs.write("noise", bytes_tensor(rng_text(t.noise_rng)));

@@ -1,16 +1,14 @@
 #include "learn/collector.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/stopwatch.hpp"
 
 namespace mimic {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
 // One environment's running state between steps.
@@ -123,7 +121,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
     const int b = static_cast<int>(active.size());
 
     // Batched inference over the active environments.
-    auto t0 = Clock::now();
+    Stopwatch inference;
     Eigen::MatrixXd raw(b, in);
     for (int k = 0; k < b; ++k) {
       raw.row(k) = slots_[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])]->frames.stacked().transpose();
@@ -164,16 +162,16 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
       r.failed.push_back(0);
       r.next_value.push_back(0.0);
     }
-    times_.inference += seconds_since(t0);
+    times_.inference += inference.seconds();
 
     // Step every active environment in parallel; each touches only its own slot.
-    t0 = Clock::now();
+    Stopwatch stepping;
     pool_.run(b, [&](int k) {
       const int e = active[static_cast<std::size_t>(k)];
       Slot& s = *slots_[static_cast<std::size_t>(e)];
       s.result = envs_[static_cast<std::size_t>(e)]->step(s.action.cast<double>());
     });
-    times_.simulation += seconds_since(t0);
+    times_.simulation += stepping.seconds();
 
     // Record results in environment order, then start new episodes where one ended.
     std::vector<int> to_reset;
@@ -212,16 +210,16 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
       }
     }
     if (!to_reset.empty()) {
-      t0 = Clock::now();
+      Stopwatch resetting;
       pool_.run(static_cast<int>(to_reset.size()), [&](int k) { reset_slot(to_reset[static_cast<std::size_t>(k)]); });
-      times_.simulation += seconds_since(t0);
+      times_.simulation += resetting.seconds();
     }
     if (step_hook_) step_hook_(r.size());
   }
 
   // Values that bootstrap: the state after each step is the next sample of the same environment,
   // except after an ended episode (its last observation) and after the last step (the current one).
-  auto t0 = Clock::now();
+  Stopwatch bootstrapping;
   for (int e = 0; e < n_env; ++e) {
     const auto& idx = r.env_steps[static_cast<std::size_t>(e)];
     for (std::size_t j = 0; j + 1 < idx.size(); ++j)
@@ -237,7 +235,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
     for (std::size_t k = 0; k < bootstrap.size(); ++k)
       r.next_value[static_cast<std::size_t>(bootstrap[k].first)] = v.data_ptr<float>()[k];
   }
-  times_.inference += seconds_since(t0);
+  times_.inference += bootstrapping.seconds();
   return r;
 }
 

@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <random>
 
 #include "core/error.hpp"
+#include "core/stopwatch.hpp"
 #include "core/worker_pool.hpp"
 #include "env/env_factory.hpp"
 #include "learn/trainer.hpp"
@@ -13,9 +13,6 @@
 namespace mimic {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Control steps per second of `envs` environments stepped by `threads` workers with random actions.
 double simulation_rate(const EnvFactory& factory, int envs, int threads, int steps_per_env) {
@@ -27,7 +24,7 @@ double simulation_rate(const EnvFactory& factory, int envs, int threads, int ste
     pool_envs.back()->reset(rngs.back());
   }
   WorkerPool pool(std::min(threads, envs));
-  const auto start = Clock::now();
+  const Stopwatch clock;
   pool.run(envs, [&](int i) {
     Env& env = *pool_envs[static_cast<std::size_t>(i)];
     std::mt19937_64& rng = rngs[static_cast<std::size_t>(i)];
@@ -38,7 +35,7 @@ double simulation_rate(const EnvFactory& factory, int envs, int threads, int ste
       if (env.step(a).done()) env.reset(rng);
     }
   });
-  return static_cast<double>(envs) * steps_per_env / seconds_since(start);
+  return static_cast<double>(envs) * steps_per_env / clock.seconds();
 }
 
 }  // namespace
@@ -73,7 +70,7 @@ std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
     trainer.iterate();  // warm-up: allocations, first normaliser statistics
     double sim = 0, inf = 0, learn = 0;
     long long samples = 0;
-    const auto start = Clock::now();
+    const Stopwatch clock;
     for (int i = 0; i < opts.iterations; ++i) {
       const IterationMetrics m = trainer.iterate();
       sim += m.get("time_simulation");
@@ -81,7 +78,7 @@ std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
       learn += m.get("time_learning");
       samples = static_cast<long long>(m.get("samples"));
     }
-    r.seconds = seconds_since(start);
+    r.seconds = clock.seconds();
     const long long timed = samples - samples / (opts.iterations + 1);
     r.train_samples_per_s = static_cast<double>(timed) / r.seconds;
     r.share_simulation = sim / r.seconds;

@@ -3,21 +3,18 @@
 #include <ATen/Parallel.h>
 #include <dlfcn.h>
 
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "core/stopwatch.hpp"
 #include "learn/advantage.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // One LibTorch intra-op thread and one OpenBLAS thread: parallelism comes from the environment
 // workers and the concurrent value update (DESIGN.md: oversubscription was 5x slower).
@@ -117,25 +114,25 @@ PpoBatch Trainer::Impl::make_batch(const Rollout& r) const {
 }
 
 IterationMetrics Trainer::Impl::iterate() {
-  const auto start = Clock::now();
+  const Stopwatch iteration_time;
   learner->set_progress(static_cast<double>(iteration) / cfg.iterations);
   Rollout r = cfg.collect.mode == "episodes"
                   ? collector->collect_episodes(cfg.collect.episodes, learner->policy(), learner->value(), obs_norm, noise_rng)
                   : collector->collect_steps(std::max(1, cfg.collect.samples / cfg.collect.envs), learner->policy(), learner->value(),
                                              obs_norm, noise_rng);
   compute_rewards(r);
-  const auto learn_start = Clock::now();
+  const Stopwatch learning;
   const PpoStats s = learner->update(make_batch(r), shuffle_rng, cfg.collect.threads > 1, iteration + 1);
   std::vector<std::pair<std::string, double>> source_metrics;
   for (auto& [w, source] : rewards)
     for (auto& m : source->update(r)) source_metrics.emplace_back(source->name() + "_" + m.first, m.second);
   if (cfg.normalize.observations)
     obs_norm.update(Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(r.raw_input.data(), r.size(), r.input_size)));
-  const double learn_seconds = seconds_since(learn_start);
+  const double learn_seconds = learning.seconds();
 
   ++iteration;
   samples += r.size();
-  const double seconds = seconds_since(start);
+  const double seconds = iteration_time.seconds();
   wall_seconds += seconds;
   const EpisodeStats ep = collector->take_episode_stats();
   const CollectTimes times = collector->take_times();
@@ -205,13 +202,14 @@ IterationMetrics Trainer::iterate() {
 }
 
 void Trainer::run() {
-  int last_saved = -1;
+  const int first = impl_->iteration;
   while (impl_->iteration < impl_->cfg.iterations) {
     if (impl_->opts.stop_requested && impl_->opts.stop_requested()) break;
-    const IterationMetrics m = iterate();
-    if (m.iteration % impl_->cfg.checkpoint_every == 0) last_saved = m.iteration;
+    iterate();
   }
-  if (!impl_->opts.run_dir.empty() && last_saved != impl_->iteration) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
+  // iterate() has saved at multiples of checkpoint_every; save the last iteration otherwise.
+  const bool saved = impl_->iteration % impl_->cfg.checkpoint_every == 0 && impl_->iteration > first;
+  if (!impl_->opts.run_dir.empty() && !saved) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
 }
 
 int Trainer::iteration() const { return impl_->iteration; }
