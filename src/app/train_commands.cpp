@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cmath>
 #include <csignal>
-#include <thread>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
@@ -57,7 +56,7 @@ void add_train_commands(CLI::App& app) {
   train->callback([args] {
     TrainConfig cfg = load_train_config(args->config);
     if (args->iterations > 0) cfg.iterations = args->iterations;
-    if (args->threads >= 0) cfg.collect.threads = args->threads > 0 ? args->threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     TrainOptions opts;
     opts.run_dir = args->out.empty() ? std::filesystem::path("runs") / args->config.stem() : args->out;
     opts.resume = args->resume;

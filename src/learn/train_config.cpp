@@ -28,6 +28,10 @@ NetworkConfig read_network(ConfigSection& s, double output_scale) {
 
 }  // namespace
 
+int resolve_threads(int requested) {
+  return requested > 0 ? requested : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 TrainConfig parse_train_config(const std::string& text, const std::string& source) {
   const YamlReader r(source);
   const YAML::Node root = r.parse(text, "not valid YAML");
@@ -95,7 +99,7 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
   cc.mode = col.choice("mode", cc.mode, {"horizon", "episodes"});
   cc.episodes = static_cast<int>(col.integer("episodes", cc.episodes, 0, 10'000'000));
   col.finish();
-  if (cc.threads == 0) cc.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  cc.threads = resolve_threads(cc.threads);
   if (cc.mode == "horizon" && cc.samples < cc.envs)
     r.fail(root["collect"], "'collect.samples' (" + std::to_string(cc.samples) + ") must be at least 'collect.envs' (" + std::to_string(cc.envs) + ")");
   if (cc.mode == "episodes" && cc.episodes < 1) r.fail(root["collect"], "'collect.episodes' must be >= 1 in episodes mode");

@@ -92,6 +92,9 @@ struct TrainConfig {
   std::string text;    // the YAML as read, stored with checkpoints
 };
 
+// Worker threads for a requested count: 0 means every core.
+int resolve_threads(int requested);
+
 // Parses YAML text; `source` names it in errors (ParseError: "source:line: 'ppo.clip': ...").
 TrainConfig parse_train_config(const std::string& text, const std::string& source);
 TrainConfig load_train_config(const std::filesystem::path& path);
