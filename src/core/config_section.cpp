@@ -98,6 +98,18 @@ std::vector<int> ConfigSection::integers(const char* key, const std::vector<int>
   return out;
 }
 
+std::vector<std::string> ConfigSection::texts(const char* key, const std::vector<std::string>& fallback) {
+  const YAML::Node n = get(key);
+  if (!n.IsDefined()) return fallback;
+  if (!n.IsSequence()) reader_.fail(n, name(key) + ": expected a list of names");
+  std::vector<std::string> out;
+  for (const auto& item : n) {
+    if (!item.IsScalar()) reader_.fail(item, name(key) + ": expected a name");
+    out.push_back(item.Scalar());
+  }
+  return out;
+}
+
 YAML::Node ConfigSection::child(const char* key) { return get(key); }
 
 void ConfigSection::finish() const {

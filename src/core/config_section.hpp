@@ -26,6 +26,7 @@ class ConfigSection {
   // One of `choices`.
   std::string choice(const char* key, const std::string& fallback, const std::vector<std::string>& choices);
   std::vector<int> integers(const char* key, const std::vector<int>& fallback, long lo, long hi);
+  std::vector<std::string> texts(const char* key, const std::vector<std::string>& fallback);
   // A nested mapping (undefined when absent); its keys are checked by its own section.
   YAML::Node child(const char* key);
   bool has(const char* key) const;

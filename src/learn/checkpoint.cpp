@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "learn/archive_util.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
@@ -14,40 +15,7 @@ namespace {
 constexpr std::int64_t kFormat = 1;
 using torch::serialize::InputArchive;
 using torch::serialize::OutputArchive;
-
-torch::Tensor bytes_tensor(const std::string& s) {
-  return torch::from_blob(const_cast<char*>(s.data()), {static_cast<std::int64_t>(s.size())}, torch::kUInt8).clone();
-}
-std::string tensor_bytes(const torch::Tensor& t) {
-  const torch::Tensor c = t.contiguous();
-  return std::string(reinterpret_cast<const char*>(c.data_ptr<std::uint8_t>()), static_cast<std::size_t>(c.numel()));
-}
-torch::Tensor vec_tensor(const Eigen::VectorXd& v) {
-  return torch::from_blob(const_cast<double*>(v.data()), {v.size()}, torch::kFloat64).clone();
-}
-Eigen::VectorXd tensor_vec(const torch::Tensor& t) {
-  const torch::Tensor c = t.contiguous().to(torch::kFloat64);
-  return Eigen::Map<const Eigen::VectorXd>(c.data_ptr<double>(), c.numel());
-}
-template <class Rng>
-std::string rng_text(const Rng& rng) {
-  std::ostringstream os;
-  os << rng;
-  return os.str();
-}
-template <class Rng>
-void set_rng(Rng& rng, const std::string& text, const std::string& what) {
-  std::istringstream is(text);
-  is >> rng;
-  if (!is) throw Error("generator state '" + what + "' is unreadable");
-}
-
-// A fresh tensor per key: reading into a used one would try to resize the archive's storage.
-torch::Tensor get(InputArchive& a, const std::string& key) {
-  torch::Tensor t;
-  a.read(key, t);
-  return t;
-}
+using namespace archive;
 
 void write_normalizer(OutputArchive& a, const std::string& key, const RunningNormalizer& n) {
   OutputArchive sub;

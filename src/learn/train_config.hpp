@@ -92,11 +92,19 @@ struct TrainConfig {
   std::string text;    // the YAML as read, stored with checkpoints
 };
 
+class ConfigSection;
+// A network's keys (hidden, activation, init, ...) from one config section; absent keys keep `defaults`.
+NetworkConfig read_network(ConfigSection& s, NetworkConfig defaults);
+
 // Worker threads for a requested count: 0 means every core.
 int resolve_threads(int requested);
 
 // Parses YAML text; `source` names it in errors (ParseError: "source:line: 'ppo.clip': ...").
 TrainConfig parse_train_config(const std::string& text, const std::string& source);
 TrainConfig load_train_config(const std::filesystem::path& path);
+// The config text with `settings` ("ppo.clip=0.1", "rewards.0.episodes=10": keys and list
+// indices joined by dots, the value in YAML) applied, re-emitted as YAML under a comment that
+// lists them; Error naming the setting when a path does not fit the config.
+std::string override_config(const std::string& text, const std::string& source, const std::vector<std::string>& settings);
 
 }  // namespace mimic

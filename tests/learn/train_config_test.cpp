@@ -120,3 +120,27 @@ TEST(TrainConfig, EnvironmentSectionsAreCheckedByTheFactory) {
   EXPECT_EQ(env->action_size(), 3);
   EXPECT_EQ(env->observation_size(), 2);
 }
+
+TEST(OverrideConfig, SetsNestedKeysAndListElementsAndNamesBadPaths) {
+  const std::string text = "ppo: {clip: 0.2}\nrewards:\n  - {source: env, weight: 1}\n";
+  const TrainConfig c = parse_train_config(
+      override_config(text, "x.yaml", {"ppo.clip=0.1", "ppo.epochs=3", "rewards.0.weight=0.5", "collect.samples=256"}), "x.yaml");
+  EXPECT_DOUBLE_EQ(c.ppo.clip, 0.1);
+  EXPECT_EQ(c.ppo.epochs, 3);
+  EXPECT_DOUBLE_EQ(c.rewards.at(0).weight, 0.5);
+  EXPECT_EQ(c.collect.samples, 256);
+  EXPECT_EQ(override_config(text, "x.yaml", {}), text);  // nothing to apply: the text as written
+  auto error = [&](const std::string& setting) {
+    try {
+      (void)override_config(text, "x.yaml", {setting});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("ppo.clip").find("expected KEY.PATH=VALUE"), std::string::npos);
+  EXPECT_NE(error("ppo.clip.low=1").find("'ppo.clip' is a value, not a section"), std::string::npos);
+  EXPECT_NE(error("rewards.1.weight=1").find("'1' is not an index of a 1-element list"), std::string::npos);
+  EXPECT_NE(error("ppo..clip=1").find("empty key"), std::string::npos);
+  EXPECT_NE(error("ppo.clip=[1").find("not valid YAML"), std::string::npos);
+}
