@@ -15,11 +15,8 @@
 namespace mimic::app {
 
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
-  const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
-  if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))
-    throw Error(run.string() + ": not a training run (needs config.yaml and checkpoint.pt)");
-  Trainer trainer(load_train_config(config));
-  trainer.load_checkpoint(checkpoint);
+  const std::unique_ptr<Trainer> loaded = Trainer::load_policy(run);
+  Trainer& trainer = *loaded;
   const std::unique_ptr<Env> env = trainer.make_env();
   mjData* const data = env->physics_data();
   if (!env->physics_model() || !data) throw Error(run.string() + ": its environment has nothing to draw");

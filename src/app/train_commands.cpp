@@ -44,6 +44,7 @@ void add_train_commands(CLI::App& app) {
     std::filesystem::path config, out;
     bool resume = false;
     int iterations = 0, threads = -1;
+    std::vector<std::string> settings;
     TrainBenchOptions bench;
   };
   auto args = std::make_shared<Args>();
@@ -53,8 +54,11 @@ void add_train_commands(CLI::App& app) {
   train->add_flag("--resume", args->resume, "continue the run in the run directory from its checkpoint");
   train->add_option("--iterations", args->iterations, "override the config's iteration count")->check(CLI::PositiveNumber);
   train->add_option("--threads", args->threads, "override collect.threads (0: every core)")->check(CLI::NonNegativeNumber);
+  train->add_option("--set", args->settings, "override a config value: KEY.PATH=VALUE (e.g. ppo.clip=0.1, rewards.0.episodes=10); repeatable");
   train->callback([args] {
-    TrainConfig cfg = load_train_config(args->config);
+    if (args->resume && !args->settings.empty()) throw Error("--set: a resumed run keeps the config it was started with");
+    const std::string source = args->config.string();
+    TrainConfig cfg = parse_train_config(override_config(read_text_file(args->config), source, args->settings), source);
     if (args->iterations > 0) cfg.iterations = args->iterations;
     if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     TrainOptions opts;

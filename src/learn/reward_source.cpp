@@ -2,11 +2,12 @@
 
 #include "core/config_section.hpp"
 #include "core/error.hpp"
+#include "learn/adversarial_reward.hpp"
 
 namespace mimic {
 
-std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, const std::string& config_source) {
-  const YamlReader r(config_source);
+std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, const RewardSourceContext& context) {
+  const YamlReader r(context.config_source);
   ConfigSection s(r, cfg.options, "rewards");
   s.text("source", "");
   s.number("weight", 1.0);
@@ -14,7 +15,8 @@ std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, 
     s.finish();
     return std::make_unique<EnvRewardSource>();
   }
-  r.fail(cfg.options, "'rewards': unknown source '" + cfg.source + "' (known: env)");
+  if (cfg.source == "gail" || cfg.source == "iccgan") return make_adversarial_reward_source(cfg.source, s, r, context);
+  r.fail(cfg.options, "'rewards': unknown source '" + cfg.source + "' (known: env, gail, iccgan)");
 }
 
 }  // namespace mimic

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "env/env.hpp"
 #include "learn/rollout.hpp"
 #include "learn/train_config.hpp"
 
@@ -37,7 +38,15 @@ class EnvRewardSource : public RewardSource {
   std::vector<double> rewards(const Rollout& rollout) override { return rollout.env_reward; }
 };
 
-// A source by its config name; Error naming the source and the known ones otherwise.
-std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, const std::string& config_source);
+// What a source may need to know about the run it serves.
+struct RewardSourceContext {
+  std::string config_source;  // the config's path or label: messages, and files named beside it
+  int frame_size = 0, action_size = 0;
+  std::vector<ObservationSlice> layout;  // the environment's named observation parts
+  std::uint64_t seed = 1;
+};
+
+// A source by its config name (env, gail, iccgan); Error naming the source and the known ones otherwise.
+std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, const RewardSourceContext& context);
 
 }  // namespace mimic

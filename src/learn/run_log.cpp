@@ -40,12 +40,13 @@ std::vector<std::string> split(const std::string& line) {
 
 }  // namespace
 
-MetricsTable read_metrics_csv(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path);
+MetricsTable read_metrics_csv(const std::filesystem::path& path) { return parse_metrics_csv(read_text_file(path), path.string()); }
+
+MetricsTable parse_metrics_csv(const std::string& text, const std::string& source, int first_line) {
   std::istringstream in(text);
   std::string line;
   MetricsTable t;
-  int line_no = 0;
+  int line_no = first_line - 1;
   while (std::getline(in, line)) {
     ++line_no;
     if (line.empty()) continue;
@@ -55,7 +56,7 @@ MetricsTable read_metrics_csv(const std::filesystem::path& path) {
     }
     const auto cells = split(line);
     if (cells.size() != t.columns.size())
-      throw ParseError(path.string(), line_no, fmt::format("{} fields, the header has {}", cells.size(), t.columns.size()));
+      throw ParseError(source, line_no, fmt::format("{} fields, the header has {}", cells.size(), t.columns.size()));
     std::vector<double> row;
     for (const auto& c : cells) {
       if (c.empty()) {
@@ -69,7 +70,7 @@ MetricsTable read_metrics_csv(const std::filesystem::path& path) {
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used != c.size()) throw ParseError(path.string(), line_no, "'" + c + "' is not a number");
+      if (used != c.size()) throw ParseError(source, line_no, "'" + c + "' is not a number");
       row.push_back(v);
     }
     t.rows.push_back(std::move(row));

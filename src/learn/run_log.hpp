@@ -46,5 +46,7 @@ struct MetricsTable {
   std::vector<double> column(const std::string& name) const;
 };
 MetricsTable read_metrics_csv(const std::filesystem::path& path);
+// The same from text; `source` names it in errors, whose line numbers start at `first_line`.
+MetricsTable parse_metrics_csv(const std::string& text, const std::string& source, int first_line = 1);
 
 }  // namespace mimic

@@ -24,6 +24,8 @@ void single_threaded_math() {
   if (auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
 }
 
+std::vector<ObservationSlice> layout_of(const EnvFactory& factory) { return factory()->observation_layout(); }
+
 double mean_of(const std::vector<double>& v) {
   return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
@@ -49,7 +51,16 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   obs_norm = RunningNormalizer(collector->input_size(), cfg.normalize.clip);
   return_norm = RunningNormalizer(1, 0.0);
   discounted_return.assign(static_cast<std::size_t>(cfg.collect.envs), 0.0);
-  for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, cfg.source));
+  RewardSourceContext context;
+  context.config_source = cfg.source;
+  context.seed = cfg.seed;
+  {
+    const std::unique_ptr<Env> probe = factory();
+    context.frame_size = probe->observation_size();
+    context.action_size = probe->action_size();
+    context.layout = probe->observation_layout();
+  }
+  for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, context));
   if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(iteration + 1, n); });
 }
 
@@ -220,6 +231,17 @@ const TrainConfig& Trainer::config() const { return impl_->cfg; }
 void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(*impl_, path); }
 void Trainer::load_checkpoint(const std::filesystem::path& path) { read_checkpoint(*impl_, path); }
 
+std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run) {
+  const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
+  if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))
+    throw Error(run.string() + ": not a training run (needs config.yaml and checkpoint.pt)");
+  // Reward sources' saved state is skipped: the env source loads nothing.
+  const std::string text = override_config(read_text_file(config), config.string(), {"rewards=[{source: env}]"});
+  auto trainer = std::make_unique<Trainer>(parse_train_config(text, config.string()));
+  trainer->load_checkpoint(checkpoint);
+  return trainer;
+}
+
 std::unique_ptr<Env> Trainer::make_env() const { return impl_->factory(); }
 
 Eigen::VectorXd Trainer::act(const Eigen::VectorXd& input) const {
@@ -231,11 +253,47 @@ Eigen::VectorXd Trainer::act(const Eigen::VectorXd& input) const {
   return Eigen::Map<const Eigen::VectorXf>(mean.data_ptr<float>(), mean.size(1)).cast<double>();
 }
 
-double Trainer::evaluate(int episodes, std::uint64_t seed) {
+double Trainer::evaluate(int episodes, std::uint64_t seed) { return mean_of(run_episodes(episodes, seed, true).returns); }
+
+EpisodeStats Trainer::run_episodes(int episodes, std::uint64_t seed, bool deterministic) {
   Collector eval(impl_->factory, std::min(episodes, impl_->cfg.collect.envs), impl_->cfg.collect.threads, impl_->cfg.policy.net.history, seed);
   std::mt19937_64 rng(seed);
-  (void)eval.collect_episodes(episodes, impl_->learner->policy(), impl_->learner->value(), impl_->obs_norm, rng, /*deterministic=*/true);
-  return mean_of(eval.take_episode_stats().returns);
+  (void)eval.collect_episodes(episodes, impl_->learner->policy(), impl_->learner->value(), impl_->obs_norm, rng, deterministic);
+  return eval.take_episode_stats();
+}
+
+Demonstrations Trainer::record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns) {
+  if (episodes < 1 || every < 1) throw Error("record: episodes and every must be >= 1");
+  const int frame = impl_->collector->input_size() / impl_->cfg.policy.net.history;
+  Collector rec(impl_->factory, std::min(episodes, impl_->cfg.collect.envs), impl_->cfg.collect.threads, impl_->cfg.policy.net.history, seed);
+  std::mt19937_64 rng(seed);
+  const Rollout r = rec.collect_episodes(episodes, impl_->learner->policy(), impl_->learner->value(), impl_->obs_norm, rng, deterministic);
+  if (returns) *returns = rec.take_episode_stats().returns;
+  std::vector<std::pair<int, int>> kept;  // (sample, episode)
+  int episode = 0;
+  std::uniform_int_distribution<int> offset_of(0, every - 1);
+  for (const auto& steps : r.env_steps) {
+    int t = 0, offset = offset_of(rng);
+    for (int i : steps) {
+      if (t % every == offset) kept.emplace_back(i, episode);
+      ++t;
+      if (r.ended[static_cast<std::size_t>(i)]) ++episode, t = 0, offset = offset_of(rng);
+    }
+  }
+  Demonstrations d;
+  d.layout = layout_of(impl_->factory);
+  const auto n = static_cast<Eigen::Index>(kept.size());
+  d.obs.resize(n, frame);
+  d.next_obs.resize(n, frame);
+  d.action.resize(n, r.action_size);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto [i, e] = kept[static_cast<std::size_t>(k)];
+    d.obs.row(k) = r.frame(i).transpose();
+    d.next_obs.row(k) = r.next_frame(i).transpose();
+    d.action.row(k) = r.action_of(i).cast<double>().transpose();
+    d.episode.push_back(e);
+  }
+  return d;
 }
 
 }  // namespace mimic

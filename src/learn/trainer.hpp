@@ -12,6 +12,8 @@
 #include <memory>
 
 #include "env/env_factory.hpp"
+#include "learn/demonstrations.hpp"
+#include "learn/rollout.hpp"
 #include "learn/run_log.hpp"
 #include "learn/train_config.hpp"
 
@@ -51,11 +53,26 @@ class Trainer {
   // Mean environment return of `episodes` episodes acting with the policy's mean (no noise);
   // uses its own environments and generator, so training is not disturbed.
   double evaluate(int episodes, std::uint64_t seed = 12345);
+  // The same episodes with their returns, lengths and failures; sampled actions unless `deterministic`.
+  EpisodeStats run_episodes(int episodes, std::uint64_t seed, bool deterministic);
+  // Behavioural cloning (the baseline of seed 002 A.2): the observation normaliser takes the
+  // demonstrations' statistics and the policy mean regresses their actions (mean squared error,
+  // Adam). Returns the final training loss. Needs a policy that sees one frame.
+  double clone_behaviour(const Demonstrations& d, int epochs, double lr, int batch, std::uint64_t seed);
+  // Expert demonstrations: `episodes` episodes of the policy (sampled actions unless
+  // `deterministic`), keeping every `every`-th step of each from a random offset (seed 002:
+  // sub-sampled every 20 steps). `returns` receives each episode's environment return.
+  Demonstrations record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns = nullptr);
 
   // Acting outside training (evaluation, videos, embedding): a new environment as the run trains
   // in, and the policy's mean action for a raw policy input (`history` frames, oldest first).
   std::unique_ptr<Env> make_env() const;
   Eigen::VectorXd act(const Eigen::VectorXd& input) const;
+
+  // A trained policy from a run directory (config.yaml + checkpoint.pt), for acting only
+  // (evaluation, videos, recording): its reward sources are left out, so that a run whose
+  // discriminator read expert files elsewhere still loads. Error naming the run otherwise.
+  static std::unique_ptr<Trainer> load_policy(const std::filesystem::path& run);
 
   struct Impl;
   Impl& impl() { return *impl_; }  // for tests and benchmarks that reach the networks

@@ -1,0 +1,120 @@
+// mimic record RUN -o demos.csv: expert demonstrations from a trained policy, for adversarial
+// imitation (rewards: [{source: gail, expert: demos.csv}]); mimic clone: the behavioural-cloning
+// baseline; mimic eval RUN: episode returns of a trained policy.
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "learn/trainer.hpp"
+
+namespace mimic::app {
+
+namespace {
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
+double stddev(const std::vector<double>& v) {
+  const double m = mean(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / static_cast<double>(v.size()));
+}
+
+}  // namespace
+
+void add_imitation_commands(CLI::App& app) {
+  struct Args {
+    std::filesystem::path run, out;
+    int episodes = 50, every = 20;
+    bool deterministic = false;
+    std::uint64_t seed = 7;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("record", "record expert demonstrations (CSV) from a trained policy's episodes");
+  cmd->add_option("run", args->run, "training run directory (config.yaml + checkpoint.pt)")->required()->check(CLI::ExistingDirectory);
+  cmd->add_option("-o,--output", args->out, "output .csv")->required();
+  cmd->add_option("--episodes", args->episodes, "episodes to record")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--every", args->every, "keep every N-th step of each episode (seed 002: 20)")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_flag("--deterministic", args->deterministic, "act with the policy's mean instead of sampling (default: sample, as seed 002)");
+  cmd->add_option("--seed", args->seed, "random seed (initial states, action noise, sub-sampling offsets)")->capture_default_str();
+  cmd->callback([args] {
+    std::vector<double> returns;
+    const Demonstrations d = Trainer::load_policy(args->run)->record(args->episodes, args->every, args->deterministic, args->seed, &returns);
+    write_demonstrations(args->out, d);
+    spdlog::info("wrote {}: {} samples from {} episodes (every {} steps), mean episode return {:.1f}", args->out.string(), d.size(),
+                 d.episodes(), args->every, mean(returns));
+  });
+
+  struct CloneArgs {
+    std::filesystem::path config, expert, out;
+    int episodes = 0, epochs = 200, batch = 64;
+    double lr = 1e-3;
+  };
+  auto clone = std::make_shared<CloneArgs>();
+  CLI::App* bc = app.add_subcommand("clone", "behavioural cloning: fit a policy's mean to demonstrations (the baseline of adversarial imitation)");
+  bc->add_option("config", clone->config, "training config (.yaml): environment and policy network")->required()->check(CLI::ExistingFile);
+  bc->add_option("--expert", clone->expert, "demonstrations (.csv, from mimic record)")->required()->check(CLI::ExistingFile);
+  bc->add_option("--episodes", clone->episodes, "use the first N episodes of the file (0: all)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  bc->add_option("--epochs", clone->epochs, "passes over the demonstrations")->capture_default_str()->check(CLI::PositiveNumber);
+  bc->add_option("--lr", clone->lr, "Adam learning rate")->capture_default_str()->check(CLI::PositiveNumber);
+  bc->add_option("--batch", clone->batch, "minibatch size")->capture_default_str()->check(CLI::PositiveNumber);
+  bc->add_option("-o,--out", clone->out, "run directory to write (config.yaml + checkpoint.pt)")->required();
+  bc->callback([clone] {
+    if (std::filesystem::exists(clone->out / "checkpoint.pt")) throw Error(clone->out.string() + " already holds a run (checkpoint.pt)");
+    Demonstrations d = read_demonstrations(clone->expert);
+    if (clone->episodes > 0) {
+      if (d.episodes() < clone->episodes)
+        throw Error(d.source + ": " + std::to_string(d.episodes()) + " episodes, fewer than --episodes " + std::to_string(clone->episodes));
+      d = d.first_episodes(clone->episodes);
+    }
+    // The clone learns from no reward: its run must load without the config's expert files.
+    const std::string text = override_config(read_text_file(clone->config), clone->config.string(), {"rewards=[{source: env}]"});
+    Trainer trainer(parse_train_config(text, clone->config.string()));
+    const double loss = trainer.clone_behaviour(d, clone->epochs, clone->lr, clone->batch, trainer.config().seed);
+    std::filesystem::create_directories(clone->out);
+    write_file_atomic(clone->out / "config.yaml", text);
+    trainer.save_checkpoint(clone->out / "checkpoint.pt");
+    spdlog::info("cloned {} samples ({} episodes) in {} epochs: final mean squared error {:.4f}; wrote {}", d.size(), d.episodes(),
+                 clone->epochs, loss, clone->out.string());
+  });
+
+  struct EvalArgs {
+    std::filesystem::path run, json;
+    int episodes = 20;
+    bool stochastic = false;
+    std::uint64_t seed = 12345;
+  };
+  auto eval = std::make_shared<EvalArgs>();
+  CLI::App* ev = app.add_subcommand("eval", "evaluate a trained policy: episode return, length and failures");
+  ev->add_option("run", eval->run, "training run directory")->required()->check(CLI::ExistingDirectory);
+  ev->add_option("--episodes", eval->episodes, "episodes")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_flag("--stochastic", eval->stochastic, "sample actions (default: the policy's mean)");
+  ev->add_option("--seed", eval->seed, "random seed of the episodes")->capture_default_str();
+  ev->add_option("--json", eval->json, "also write the figures to this JSON file");
+  ev->callback([eval] {
+    const EpisodeStats s = Trainer::load_policy(eval->run)->run_episodes(eval->episodes, eval->seed, !eval->stochastic);
+    const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
+    const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
+    spdlog::info("{}: {} episodes ({} actions): return {:.1f} +- {:.1f}, length {:.1f}, fall rate {:.2f}", eval->run.string(),
+                 s.returns.size(), eval->stochastic ? "sampled" : "mean", mean(s.returns), stddev(s.returns), mean(lengths), fall_rate);
+    if (!eval->json.empty())
+      write_file_atomic(eval->json, fmt::format("{{\"run\": {}, \"episodes\": {}, \"actions\": \"{}\", \"return_mean\": {}, "
+                                                "\"return_std\": {}, \"episode_length\": {}, \"fall_rate\": {}}}\n",
+                                                json_string(eval->run.string()), s.returns.size(), eval->stochastic ? "sampled" : "mean", mean(s.returns),
+                                                stddev(s.returns), mean(lengths), fall_rate));
+  });
+}
+
+}  // namespace mimic::app

@@ -1,0 +1,34 @@
+#pragma once
+// Expert demonstrations for adversarial imitation: (observation, action, next observation)
+// samples tagged with their episode, as recorded from a trained policy (`mimic record`) or made
+// by a program. Stored as CSV: an optional first line `# layout: name offset size; ...` naming
+// the parts of an observation (so a discriminator can pick the same part from an expert of a
+// different body), a header `episode,obs_0..,action_0..,next_obs_0..`, a row per sample.
+// Torch-free.
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "env/env.hpp"
+
+namespace mimic {
+
+struct Demonstrations {
+  Eigen::MatrixXd obs, action, next_obs;  // one row per sample
+  std::vector<int> episode;
+  std::vector<ObservationSlice> layout;  // empty when the file named none
+  std::string source;  // file it came from, for messages
+
+  int size() const { return static_cast<int>(obs.rows()); }
+  int episodes() const;  // distinct episode tags
+  // The samples of the first `n` episodes (in order of first appearance); all if fewer.
+  Demonstrations first_episodes(int n) const;
+};
+
+// Errors (ParseError) name the file, the line and the problem: a missing column group, sizes
+// that disagree, a cell that is not a finite number, no samples, a layout outside the observation.
+Demonstrations read_demonstrations(const std::filesystem::path& path);
+void write_demonstrations(const std::filesystem::path& path, const Demonstrations& d);  // atomic
+
+}  // namespace mimic

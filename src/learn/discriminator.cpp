@@ -1,0 +1,150 @@
+#include "learn/discriminator.hpp"
+
+#include "core/error.hpp"
+#include "learn/archive_util.hpp"
+
+namespace mimic {
+
+torch::Tensor bce_loss(const torch::Tensor& expert_logits, const torch::Tensor& policy_logits) {
+  namespace F = torch::nn::functional;
+  return F::binary_cross_entropy_with_logits(expert_logits, torch::ones_like(expert_logits)) +
+         F::binary_cross_entropy_with_logits(policy_logits, torch::zeros_like(policy_logits));
+}
+
+torch::Tensor hinge_loss(const torch::Tensor& expert_scores, const torch::Tensor& policy_scores) {
+  // Means over samples and heads = (1/N) sum_i of each head's expectation.
+  return torch::relu(1.0 + policy_scores).mean() + torch::relu(1.0 - expert_scores).mean();
+}
+
+torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points) {
+  const torch::Tensor x = points.detach().requires_grad_(true);
+  const torch::Tensor out = net->forward(x);
+  torch::Tensor sum = torch::zeros({}, out.options());
+  // Each head's own gradient (a gradient of the sum over heads would mix them).
+  for (std::int64_t i = 0; i < out.size(1); ++i) {
+    const torch::Tensor g = torch::autograd::grad({out.select(1, i).sum()}, {x}, {}, /*retain_graph=*/true, /*create_graph=*/true)[0];
+    sum = sum + (g.norm(2, 1) - 1.0).square().mean();
+  }
+  return sum / static_cast<double>(out.size(1));
+}
+
+torch::Tensor gail_reward(const torch::Tensor& logits, double clip) {
+  return torch::nn::functional::softplus(logits).clamp_max(clip).mean(1);
+}
+
+torch::Tensor ensemble_reward(const torch::Tensor& scores) { return scores.clamp(-1.0, 1.0).mean(1); }
+
+Discriminator::Discriminator(torch::Tensor expert, const DiscriminatorConfig& cfg, std::uint64_t seed)
+    : cfg_(cfg), expert_(expert.to(torch::kFloat32).contiguous()), rng_(seed) {
+  if (expert_.dim() != 2 || expert_.size(0) < 1) throw Error("discriminator: no expert samples");
+  if (cfg_.heads < 1 || cfg_.batch < 1 || cfg_.epochs < 0) throw Error("discriminator: heads and batch must be positive");
+  mean_ = expert_.mean(0);
+  // A feature that never varies in the demonstrations keeps unit scale (no division by zero).
+  const torch::Tensor sd = expert_.size(0) > 1 ? expert_.std(0) : torch::ones_like(mean_);
+  std_ = torch::where(sd > 1e-6, sd, torch::ones_like(sd));
+  net_ = FeatureNet(static_cast<int>(expert_.size(1)), cfg_.heads, cfg_.net);
+  optimizer_ = std::make_unique<torch::optim::Adam>(net_->parameters(), torch::optim::AdamOptions(cfg_.lr));
+  replay_ = torch::empty({0, expert_.size(1)});
+}
+
+torch::Tensor Discriminator::forward(const torch::Tensor& features) { return net_->forward(standardise(features)); }
+
+torch::Tensor Discriminator::reward(const torch::Tensor& features) {
+  torch::NoGradGuard no_grad;
+  const torch::Tensor out = forward(features);
+  return cfg_.loss == "hinge" ? ensemble_reward(out) : gail_reward(out, cfg_.reward_clip);
+}
+
+torch::Tensor Discriminator::loss_of(const torch::Tensor& expert_out, const torch::Tensor& policy_out) const {
+  return cfg_.loss == "hinge" ? hinge_loss(expert_out, policy_out) : bce_loss(expert_out, policy_out);
+}
+
+namespace {
+
+torch::Tensor index_tensor(const std::vector<std::int64_t>& idx) {
+  return torch::from_blob(const_cast<std::int64_t*>(idx.data()), {static_cast<std::int64_t>(idx.size())}, torch::kInt64).clone();
+}
+
+}  // namespace
+
+DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
+  const torch::Tensor policy = policy_in.to(torch::kFloat32).contiguous();
+  if (policy.dim() != 2 || policy.size(1) != expert_.size(1))
+    throw Error("discriminator: policy features have the wrong width");
+  const std::int64_t n_new = policy.size(0), n_expert = expert_.size(0);
+  DiscriminatorStats s;
+  if (n_new == 0) return s;
+  std::uniform_int_distribution<std::int64_t> pick_expert(0, n_expert - 1);
+  auto expert_batch = [&](std::int64_t n) {
+    std::vector<std::int64_t> idx(static_cast<std::size_t>(n));
+    for (auto& i : idx) i = pick_expert(rng_);
+    return expert_.index_select(0, index_tensor(idx));
+  };
+  {
+    torch::NoGradGuard no_grad;
+    const torch::Tensor p = forward(policy), e = forward(expert_batch(n_new));
+    s.expert_accuracy = (e > 0).to(torch::kFloat32).mean().item<double>();
+    s.policy_accuracy = (p < 0).to(torch::kFloat32).mean().item<double>();
+    s.expert_score = e.mean().item<double>();
+    s.policy_score = p.mean().item<double>();
+  }
+  replay_ = cfg_.replay > 0 ? torch::cat({replay_, policy}).slice(0, std::max<std::int64_t>(0, replay_.size(0) + n_new - cfg_.replay))
+                            : policy;
+  const std::int64_t pool = replay_.size(0), per_epoch = std::min(pool, n_new);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  int steps = 0;
+  for (int epoch = 0; epoch < cfg_.epochs; ++epoch) {
+    std::vector<std::int64_t> order(static_cast<std::size_t>(pool));
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng_);
+    for (std::int64_t start = 0; start < per_epoch; start += cfg_.batch) {
+      const std::int64_t b = std::min<std::int64_t>(cfg_.batch, per_epoch - start);
+      const std::vector<std::int64_t> idx(order.begin() + start, order.begin() + start + b);
+      const torch::Tensor p = standardise(replay_.index_select(0, index_tensor(idx)));
+      const torch::Tensor e = standardise(expert_batch(b));
+      torch::Tensor loss = loss_of(net_->forward(e), net_->forward(p));
+      s.loss += loss.item<double>();
+      if (cfg_.gradient_penalty > 0) {
+        std::vector<float> alpha(static_cast<std::size_t>(b));
+        for (float& a : alpha) a = unit(rng_);
+        const torch::Tensor a = torch::from_blob(alpha.data(), {b, 1}, torch::kFloat32).clone();
+        const torch::Tensor penalty = gradient_penalty(net_, a * e + (1 - a) * p);
+        s.penalty += penalty.item<double>();
+        loss = loss + cfg_.gradient_penalty * penalty;
+      }
+      optimizer_->zero_grad();
+      loss.backward();
+      optimizer_->step();
+      ++steps;
+    }
+  }
+  if (steps > 0) s.loss /= steps, s.penalty /= steps;
+  return s;
+}
+
+void Discriminator::save(torch::serialize::OutputArchive& a) const {
+  torch::serialize::OutputArchive net, opt;
+  net_->save(net);
+  optimizer_->save(opt);
+  a.write("net", net);
+  a.write("optimizer", opt);
+  a.write("mean", mean_);
+  a.write("std", std_);
+  a.write("replay", replay_);
+  a.write("rng", archive::bytes_tensor(archive::rng_text(rng_)));
+}
+
+void Discriminator::load(torch::serialize::InputArchive& a) {
+  torch::serialize::InputArchive net, opt;
+  a.read("net", net);
+  a.read("optimizer", opt);
+  net_->load(net);
+  optimizer_->load(opt);
+  const torch::Tensor mean = archive::get(a, "mean"), sd = archive::get(a, "std");
+  if (mean.numel() != mean_.numel()) throw Error("discriminator: saved input width differs from the configured features");
+  mean_ = mean, std_ = sd;
+  replay_ = archive::get(a, "replay");
+  archive::set_rng(rng_, archive::tensor_bytes(archive::get(a, "rng")), "discriminator");
+}
+
+}  // namespace mimic

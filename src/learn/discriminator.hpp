@@ -1,0 +1,79 @@
+#pragma once
+// Discriminators for adversarial imitation. One network with N output heads over shared layers:
+// N = 1 with binary cross-entropy is GAIL's discriminator (seeds 000, 002); N = 32 with hinge
+// loss and a gradient penalty is ICCGAN's ensemble (seed 004 eqs. 2-5). Inputs are standardised
+// by fixed statistics of the expert features, saved with the network.
+#include <torch/torch.h>
+
+#include <random>
+
+#include "learn/networks.hpp"
+
+namespace mimic {
+
+struct DiscriminatorConfig {
+  DiscriminatorConfig() { net.hidden = {100, 100}; }  // seed 002 A.3
+  NetworkConfig net;
+  std::string loss = "bce";       // bce (GAIL) | hinge (ICCGAN)
+  int heads = 1;                  // N; the reward averages over them
+  double gradient_penalty = 0.0;  // lambda_GP on interpolates of expert and policy samples
+  double lr = 3e-4;
+  int epochs = 2;                 // passes per iteration over as many samples as the iteration collected
+  int batch = 256;                // policy samples per minibatch (and as many expert samples)
+  int replay = 0;                 // policy samples kept across iterations (0: this iteration's only)
+  double reward_clip = 10.0;      // bce: -log(1 - D) clipped here (seed 000)
+};
+
+// Losses on [batch, heads] outputs, averaged over heads.
+// Binary cross-entropy on logits, expert labelled 1 and policy 0.
+torch::Tensor bce_loss(const torch::Tensor& expert_logits, const torch::Tensor& policy_logits);
+// Seed 004 eq. 2: E[max(0, 1 + D(policy))] + E[max(0, 1 - D(expert))].
+torch::Tensor hinge_loss(const torch::Tensor& expert_scores, const torch::Tensor& policy_scores);
+// Seed 004 eq. 3: mean over heads of E[(|grad_x D_i(x)| - 1)^2] at `points` (with a graph, so the
+// penalty trains the network: double backward).
+torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points);
+// Per-sample rewards [batch]: GAIL's -log(1 - sigmoid(logit)) = softplus(logit), clipped at `clip`
+// and averaged over heads; ICCGAN's mean over heads of clip(D_i, -1, 1) (seed 004 eq. 5).
+torch::Tensor gail_reward(const torch::Tensor& logits, double clip);
+torch::Tensor ensemble_reward(const torch::Tensor& scores);
+
+struct DiscriminatorStats {
+  double loss = 0, penalty = 0;
+  // Before the update, on this iteration's policy samples and as many expert samples: fraction
+  // classified correctly (expert D > 0, policy D < 0; averaged over heads) and mean outputs.
+  double expert_accuracy = 0, policy_accuracy = 0, expert_score = 0, policy_score = 0;
+};
+
+class Discriminator {
+ public:
+  // `expert` [samples, input]: the features it learns to tell apart, also the source of the
+  // standardisation statistics.
+  Discriminator(torch::Tensor expert, const DiscriminatorConfig& cfg, std::uint64_t seed);
+
+  int input_size() const { return static_cast<int>(expert_.size(1)); }
+  const torch::Tensor& expert() const { return expert_; }  // [samples, input], as given
+  const DiscriminatorConfig& config() const { return cfg_; }
+  // Raw outputs [batch, heads] for unstandardised features [batch, input].
+  torch::Tensor forward(const torch::Tensor& features);
+  // Per-sample reward [batch] by the configured loss's rule (no gradients).
+  torch::Tensor reward(const torch::Tensor& features);
+  // M epochs on the newest policy features [samples, input] (joined to the replay buffer).
+  DiscriminatorStats update(const torch::Tensor& policy);
+
+  FeatureNet& net() { return net_; }
+  void save(torch::serialize::OutputArchive& a) const;
+  void load(torch::serialize::InputArchive& a);
+
+ private:
+  torch::Tensor standardise(const torch::Tensor& x) const { return (x - mean_) / std_; }
+  torch::Tensor loss_of(const torch::Tensor& expert_out, const torch::Tensor& policy_out) const;
+
+  DiscriminatorConfig cfg_;
+  torch::Tensor expert_, mean_, std_;
+  torch::Tensor replay_;  // [kept, input]
+  FeatureNet net_{nullptr};
+  std::unique_ptr<torch::optim::Adam> optimizer_;
+  std::mt19937_64 rng_;  // minibatches, expert draws, interpolation coefficients
+};
+
+}  // namespace mimic
