@@ -101,3 +101,11 @@ TEST(LineChart, DrawsEverySeriesWithGapsAtMissingValues) {
   c.series = {{"empty", {0}, {NAN}}};
   EXPECT_THROW(mimic::line_chart_svg(c), mimic::Error);
 }
+
+TEST(LineChart, LongLegendNamesWidenThePictureNotCutOff) {
+  mimic::LineChart c;
+  c.series = {{"a", {0, 1}, {0, 1}}};
+  EXPECT_NE(mimic::line_chart_svg(c).find("width='720'"), std::string::npos);
+  c.series[0].name = std::string(40, 'x');  // 30 + 7 * 40 = 310 px of legend instead of 150
+  EXPECT_NE(mimic::line_chart_svg(c).find("width='880'"), std::string::npos);
+}

@@ -131,6 +131,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   d.batch = static_cast<int>(s.integer("batch", d.batch, 1, 1 << 20));
   d.replay = static_cast<int>(s.integer("replay", d.replay, 0, 1 << 26));
   d.reward_clip = s.number("reward_clip", d.reward_clip, 1e-6, 1e6);
+  d.reward_offset = s.number("reward_offset", d.reward_offset, -1e6, 1e6);
   {
     ConfigSection n(reader, s.child("network"), s.name("network"));
     d.net = read_network(n, d.net);

@@ -52,7 +52,7 @@ torch::Tensor Discriminator::forward(const torch::Tensor& features) { return net
 torch::Tensor Discriminator::reward(const torch::Tensor& features) {
   torch::NoGradGuard no_grad;
   const torch::Tensor out = forward(features);
-  return cfg_.loss == "hinge" ? ensemble_reward(out) : gail_reward(out, cfg_.reward_clip);
+  return (cfg_.loss == "hinge" ? ensemble_reward(out) : gail_reward(out, cfg_.reward_clip)) + cfg_.reward_offset;
 }
 
 torch::Tensor Discriminator::loss_of(const torch::Tensor& expert_out, const torch::Tensor& policy_out) const {

@@ -22,6 +22,8 @@ struct DiscriminatorConfig {
   int batch = 256;                // policy samples per minibatch (and as many expert samples)
   int replay = 0;                 // policy samples kept across iterations (0: this iteration's only)
   double reward_clip = 10.0;      // bce: -log(1 - D) clipped here (seed 000)
+  double reward_offset = 0.0;     // added to every reward: 1 keeps the hinge ensemble's [-1, 1] non-negative,
+                                  // so that ending an episode early never pays
 };
 
 // Losses on [batch, heads] outputs, averaged over heads.

@@ -52,8 +52,13 @@ std::string line_chart_svg(const LineChart& c) {
   if (x1 == x0) x1 = x0 + 1;
   if (y1 == y0) y1 = y0 + 1;
   const std::vector<double> xt = chart_ticks(x0, x1), yt = chart_ticks(y0, y1);
-  const double left = 70, right = 20 + 150, top = 40, bottom = 50;  // the legend sits on the right
-  const double pw = c.width - left - right, ph = c.height - top - bottom;
+  // The legend sits on the right; long names widen the picture, not shrink the plot.
+  std::size_t longest = 0;
+  for (const auto& s : c.series) longest = std::max(longest, s.name.size());
+  const double legend = std::max(150.0, 30.0 + 7.0 * static_cast<double>(longest));
+  const double width = c.width + (legend - 150.0);
+  const double left = 70, right = 20 + legend, top = 40, bottom = 50;
+  const double pw = width - left - right, ph = c.height - top - bottom;
   auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
   auto py = [&](double y) { return top + ph - (y - y0) / (y1 - y0) * ph; };
   static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
@@ -61,7 +66,7 @@ std::string line_chart_svg(const LineChart& c) {
   std::string svg = fmt::format(
       "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' viewBox='0 0 {0} {1}' font-family='sans-serif' font-size='12'>\n"
       "<rect width='100%' height='100%' fill='white'/>\n<text x='{2}' y='22' font-size='15'>{3}</text>\n",
-      c.width, c.height, left, svg_escape(c.title));
+      width, c.height, left, svg_escape(c.title));
   for (double t : xt)
     svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{0:.1f}' y2='{2:.1f}' stroke='#ddd'/><text x='{0:.1f}' y='{3:.1f}' text-anchor='middle'>{4}</text>\n",
                        px(t), top, top + ph, top + ph + 16, label(t));

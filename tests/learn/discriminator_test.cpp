@@ -92,6 +92,10 @@ TEST(Discriminator, LearnsToTellTwoDistributionsApartAndSavesExactly) {
     if (loss == "hinge") {
       EXPECT_GT(after.penalty, 0.0);
     }
+    if (loss == "hinge") {  // the ensemble's reward lies in [-1, 1]
+      EXPECT_GE(d.reward(policy).min().item<double>(), -1.0);
+      EXPECT_LE(d.reward(expert).max().item<double>(), 1.0);
+    }
     // The reward ranks expert-like samples above policy-like ones.
     EXPECT_GT(d.reward(expert).mean().item<double>(), d.reward(policy).mean().item<double>() + 0.5) << loss;
 
@@ -110,6 +114,22 @@ TEST(Discriminator, LearnsToTellTwoDistributionsApartAndSavesExactly) {
     e.update(policy);
     EXPECT_TRUE(torch::equal(d.reward(expert), e.reward(expert))) << loss;
   }
+}
+
+TEST(Discriminator, RewardOffsetShiftsEveryReward) {
+  const torch::Tensor expert = torch::randn({8, 2}), x = torch::randn({5, 2});
+  DiscriminatorConfig cfg;
+  cfg.loss = "hinge";
+  cfg.heads = 4;
+  Discriminator plain(expert, cfg, 1);
+  cfg.reward_offset = 1.0;
+  Discriminator shifted(expert, cfg, 1);
+  {
+    torch::NoGradGuard no_grad;
+    auto a = plain.net()->parameters(), b = shifted.net()->parameters();
+    for (std::size_t i = 0; i < a.size(); ++i) b[i].copy_(a[i]);
+  }
+  EXPECT_TRUE(torch::allclose(shifted.reward(x), plain.reward(x) + 1.0));
 }
 
 TEST(Discriminator, ReplayKeepsTheNewestSamplesUpToItsSize) {
