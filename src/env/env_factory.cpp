@@ -3,6 +3,7 @@
 #include "core/config_section.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "env/context_env.hpp"
 #include "env/humanoid_forward.hpp"
 #include "env/planar_walker.hpp"
 #include "motion/clip_io.hpp"
@@ -80,6 +81,15 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
     throw;
   } catch (const Error& e) {
     reader.fail(env, e.what());
+  }
+  // Any environment may carry seed 000's behaviour context: context: {count: K, period: steps}.
+  const YAML::Node context = s.child("context");
+  if (context.IsDefined()) {
+    ConfigSection c(reader, context, "env.context");
+    const int count = static_cast<int>(c.integer("count", 2, 2, 1024));
+    const int period = static_cast<int>(c.integer("period", 0, 0, 100'000'000));
+    c.finish();
+    f = [inner = f, count, period] { return std::unique_ptr<Env>(std::make_unique<ContextEnv>(inner(), count, period)); };
   }
   s.finish();
   try {

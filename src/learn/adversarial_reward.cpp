@@ -8,26 +8,34 @@
 namespace mimic {
 
 int TransitionFeatures::width() const {
-  const int cols = static_cast<int>(columns.size());
-  return transition == "s" ? cols : transition == "ss" ? 2 * cols : cols + action_size;
+  return transition == "s" ? state_width() : transition == "ss" ? 2 * state_width() : state_width() + action_size;
 }
 
 namespace {
 
+// One state's features into row i from column `at`: the chosen entries, then the context.
+template <class Vec>
+void put_state(FeatureRows& out, int i, int at, const TransitionFeatures& f, const Vec& state) {
+  const int c = static_cast<int>(f.columns.size());
+  for (int k = 0; k < c; ++k) out(i, at + k) = static_cast<float>(state[f.columns[static_cast<std::size_t>(k)]]);
+  for (int j = 0; j < f.contexts; ++j)
+    out(i, at + c + j) = f.fixed_context >= 0 ? (j == f.fixed_context ? 1.0f : 0.0f) : static_cast<float>(state[f.context_offset + j]);
+}
+
 template <class Obs, class Next, class Act>
 FeatureRows gather(int n, const TransitionFeatures& f, Obs obs, Next next, Act act) {
   FeatureRows out(n, f.width());
-  const int c = static_cast<int>(f.columns.size());
+  const int w = f.state_width();
   for (int i = 0; i < n; ++i) {
     if (f.transition == "s") {
-      for (int k = 0; k < c; ++k) out(i, k) = static_cast<float>(next(i)[f.columns[static_cast<std::size_t>(k)]]);
+      put_state(out, i, 0, f, next(i));
       continue;
     }
-    for (int k = 0; k < c; ++k) out(i, k) = static_cast<float>(obs(i)[f.columns[static_cast<std::size_t>(k)]]);
+    put_state(out, i, 0, f, obs(i));
     if (f.transition == "ss")
-      for (int k = 0; k < c; ++k) out(i, c + k) = static_cast<float>(next(i)[f.columns[static_cast<std::size_t>(k)]]);
+      put_state(out, i, w, f, next(i));
     else
-      for (int k = 0; k < f.action_size; ++k) out(i, c + k) = static_cast<float>(act(i)[k]);
+      for (int k = 0; k < f.action_size; ++k) out(i, w + k) = static_cast<float>(act(i)[k]);
   }
   return out;
 }
@@ -67,10 +75,10 @@ std::vector<int> slice_columns(const std::vector<ObservationSlice>& layout, int 
   return cols;
 }
 
-AdversarialRewardSource::AdversarialRewardSource(std::string name, TransitionFeatures features, const TransitionFeatures& expert_features,
-                                                 const Demonstrations& expert, const DiscriminatorConfig& cfg, std::uint64_t seed)
-    : name_(std::move(name)), features_(std::move(features)), disc_(to_tensor(expert_features.of(expert)), cfg, seed) {
-  if (expert_features.width() != features_.width()) throw Error(expert.source + ": expert and policy features differ in width");
+AdversarialRewardSource::AdversarialRewardSource(std::string name, TransitionFeatures features, const FeatureRows& expert,
+                                                 const DiscriminatorConfig& cfg, std::uint64_t seed)
+    : name_(std::move(name)), features_(std::move(features)), disc_(to_tensor(expert), cfg, seed) {
+  if (expert.cols() != features_.width()) throw Error("adversarial reward: expert and policy features differ in width");
 }
 
 std::vector<double> AdversarialRewardSource::rewards(const Rollout& rollout) {
@@ -108,6 +116,39 @@ std::filesystem::path find_expert(const std::string& given, const std::string& c
 
 }  // namespace
 
+namespace {
+
+// One demonstrations file's features by the policy's rule `f`: the same columns, or the named
+// parts found in the file's own layout (an expert with another body); `fixed_context` for files
+// of a behaviour context. Errors name the file.
+FeatureRows expert_features(const std::string& path, const RewardSourceContext& context, const TransitionFeatures& f,
+                            const std::vector<std::string>& names, int episodes, int fixed_context, const std::string& features_key) {
+  Demonstrations demos = read_demonstrations(find_expert(path, context.config_source));
+  TransitionFeatures ef = f;
+  ef.fixed_context = fixed_context;
+  const int own_size = context.frame_size - f.contexts;  // the observation without its context
+  const bool by_layout = !names.empty() && !demos.layout.empty();
+  if (by_layout) ef.columns = slice_columns(demos.layout, static_cast<int>(demos.obs.cols()), names, demos.source);
+  if (!by_layout && demos.obs.cols() != own_size)
+    throw Error(demos.source + ": demonstrations have " + std::to_string(demos.obs.cols()) + " observation values, the environment " +
+                std::to_string(own_size) + ": for an expert with another body, name the shared observation parts in 'features' " +
+                "(the demonstrations must name their layout, as mimic record writes it)");
+  if (ef.columns.size() != f.columns.size())
+    throw Error(demos.source + ": the features " + features_key + " name " + std::to_string(ef.columns.size()) + " expert values but " +
+                std::to_string(f.columns.size()) + " of this environment");
+  if (f.transition == "sa" && demos.action.cols() != context.action_size)
+    throw Error(demos.source + ": demonstrations have " + std::to_string(demos.action.cols()) + " action values, the environment " +
+                std::to_string(context.action_size) + ": imitate another body with transition s or ss");
+  if (episodes > 0) {
+    if (demos.episodes() < episodes)
+      throw Error(demos.source + ": " + std::to_string(demos.episodes()) + " episodes, but 'episodes' asks for " + std::to_string(episodes));
+    demos = demos.first_episodes(episodes);
+  }
+  return ef.of(demos);
+}
+
+}  // namespace
+
 std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& kind, ConfigSection& s, const YamlReader& reader,
                                                              const RewardSourceContext& context) {
   const bool iccgan = kind == "iccgan";
@@ -118,11 +159,14 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
     d.net.activation = "relu";
   }
   const std::string expert_path = s.text("expert", "");
-  if (expert_path.empty()) throw Error(context.config_source + ": " + s.name("expert") + " is required: a demonstrations file (mimic record)");
+  const std::vector<std::string> per_context = s.texts("experts", {});
+  if (expert_path.empty() == per_context.empty())
+    throw Error(context.config_source + ": give either " + s.name("expert") + " (a demonstrations file, from mimic record) or " +
+                s.name("experts") + " (one file per behaviour context)");
   const int episodes = static_cast<int>(s.integer("episodes", 0, 0, 1'000'000));
   TransitionFeatures f;
   f.transition = s.choice("transition", iccgan ? "ss" : "s", {"s", "ss", "sa"});
-  const std::vector<std::string> names = s.texts("features", {});
+  std::vector<std::string> names = s.texts("features", {});
   d.loss = s.choice("loss", d.loss, {"bce", "hinge"});
   d.heads = static_cast<int>(s.integer("heads", d.heads, 1, 1024));
   d.gradient_penalty = s.number("gradient_penalty", d.gradient_penalty, 0, 1e6);
@@ -139,31 +183,33 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   }
   s.finish();
 
-  const std::string where = context.config_source + ": " + s.name("features");
-  f.columns = slice_columns(context.layout, context.frame_size, names, where);
+  const std::string features_key = s.name("features");
+  const std::string where = context.config_source + ": " + features_key;
   f.action_size = context.action_size;
-  Demonstrations demos = read_demonstrations(find_expert(expert_path, context.config_source));
-  // The expert's columns: by name in the demonstrations' own layout (another body), else the same.
-  TransitionFeatures ef = f;
-  const bool by_layout = !names.empty() && !demos.layout.empty();
-  if (by_layout) ef.columns = slice_columns(demos.layout, static_cast<int>(demos.obs.cols()), names, demos.source);
-  if (!by_layout && demos.obs.cols() != context.frame_size)
-    throw Error(demos.source + ": demonstrations have " + std::to_string(demos.obs.cols()) + " observation values, the environment " +
-                std::to_string(context.frame_size) + ": for an expert with another body, name the shared observation parts in 'features' " +
-                "(the demonstrations must name their layout, as mimic record writes it)");
-  if (ef.columns.size() != f.columns.size())
-    throw Error(demos.source + ": the features " + s.name("features") + " name " + std::to_string(ef.columns.size()) + " expert values but " +
-                std::to_string(f.columns.size()) + " of this environment");
-  if (f.transition == "sa" && demos.action.cols() != context.action_size)
-    throw Error(demos.source + ": demonstrations have " + std::to_string(demos.action.cols()) + " action values, the environment " +
-                std::to_string(context.action_size) + ": imitate another body with transition s or ss");
-  if (episodes > 0) {
-    if (demos.episodes() < episodes)
-      throw Error(demos.source + ": " + std::to_string(demos.episodes()) + " episodes, but " + s.name("episodes") + " asks for " +
-                  std::to_string(episodes));
-    demos = demos.first_episodes(episodes);
+  if (per_context.empty()) {
+    f.columns = slice_columns(context.layout, context.frame_size, names, where);
+    const FeatureRows expert = expert_features(expert_path, context, f, names, episodes, -1, features_key);
+    return std::make_unique<AdversarialRewardSource>(kind, std::move(f), expert, d, context.seed);
   }
-  return std::make_unique<AdversarialRewardSource>(kind, std::move(f), ef, demos, d, context.seed);
+  // Behaviour contexts: the environment's context slice follows every state's chosen entries.
+  const auto ctx = std::find_if(context.layout.begin(), context.layout.end(), [](const ObservationSlice& p) { return p.name == "context"; });
+  if (ctx == context.layout.end() || ctx->size != static_cast<int>(per_context.size()))
+    throw Error(context.config_source + ": " + s.name("experts") + " names " + std::to_string(per_context.size()) +
+                " files: the environment needs env.context with count " + std::to_string(per_context.size()));
+  f.contexts = ctx->size;
+  f.context_offset = ctx->offset;
+  if (names.empty())
+    for (const auto& p : context.layout)
+      if (p.name != "context") names.push_back(p.name);
+  f.columns = slice_columns(context.layout, context.frame_size, names, where);
+  FeatureRows expert(0, f.width());
+  for (std::size_t k = 0; k < per_context.size(); ++k) {
+    const FeatureRows part = expert_features(per_context[k], context, f, names, episodes, static_cast<int>(k), features_key);
+    FeatureRows joined(expert.rows() + part.rows(), f.width());
+    joined << expert, part;
+    expert = std::move(joined);
+  }
+  return std::make_unique<AdversarialRewardSource>(kind, std::move(f), expert, d, context.seed);
 }
 
 }  // namespace mimic

@@ -17,12 +17,18 @@ namespace mimic {
 
 using FeatureRows = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Which numbers of a transition the discriminator sees.
+// Which numbers of a transition the discriminator sees. With behaviour contexts (seed 000), each
+// state's chosen entries are followed by its one-hot context: read from the observation on the
+// policy's side, fixed per demonstrations file on the expert's.
 struct TransitionFeatures {
   std::string transition = "s";  // s: next state s'; ss: (s, s'); sa: (s, a)
   std::vector<int> columns;      // chosen entries of an observation frame
   int action_size = 0;
+  int contexts = 0;              // > 0: a one-hot context follows each state's entries
+  int context_offset = -1;       // where the observation holds it (the policy's side), or
+  int fixed_context = -1;        // the context of every sample (an expert file's side)
 
+  int state_width() const { return static_cast<int>(columns.size()) + contexts; }
   int width() const;
   FeatureRows of(const Rollout& r) const;
   FeatureRows of(const Demonstrations& d) const;
@@ -35,10 +41,10 @@ std::vector<int> slice_columns(const std::vector<ObservationSlice>& layout, int 
 
 class AdversarialRewardSource : public RewardSource {
  public:
-  // `expert_features` picks the same numbers from the demonstrations (their columns differ when
-  // the expert had another body); both must have the same width.
-  AdversarialRewardSource(std::string name, TransitionFeatures features, const TransitionFeatures& expert_features,
-                          const Demonstrations& expert, const DiscriminatorConfig& cfg, std::uint64_t seed);
+  // `expert` holds the expert's features by the same rule (TransitionFeatures::of on the
+  // demonstrations, whose columns differ when the expert had another body).
+  AdversarialRewardSource(std::string name, TransitionFeatures features, const FeatureRows& expert, const DiscriminatorConfig& cfg,
+                          std::uint64_t seed);
   std::string name() const override { return name_; }
   std::vector<double> rewards(const Rollout& rollout) override;
   std::vector<std::pair<std::string, double>> update(const Rollout& rollout) override;

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "env/context_env.hpp"
 #include "learn/adversarial_reward.hpp"
 #include "learn/trainer_impl.hpp"
 #include "toy_env.hpp"
@@ -141,7 +142,7 @@ TEST(AdversarialConfig, ErrorsNameTheConfigAndTheProblem) {
   EXPECT_NE(build(", featurs: [position]").find("unknown key 'rewards.featurs'"), std::string::npos);
   EXPECT_NE(build(", features: [speed]").find("unknown observation part 'speed' (this environment has: position, velocity)"),
             std::string::npos);
-  EXPECT_NE(build(", episodes: 5").find("2 episodes, but 'rewards.episodes' asks for 5"), std::string::npos);
+  EXPECT_NE(build(", episodes: 5").find("2 episodes, but 'episodes' asks for 5"), std::string::npos);
   EXPECT_NE(build(", transition: sas").find("rewards.transition"), std::string::npos);
   const std::string missing = error_of([&] {
     Trainer t(parse_train_config(gail_config(dir / "nowhere.csv", 1), "osc.yaml"), oscillator_options());
@@ -180,6 +181,50 @@ TEST(AdversarialConfig, AnExpertWithAnotherBodyIsMatchedByItsLayout) {
   std::ofstream(dir / "bad_layout.csv") << "# layout: position 3 2\nepisode,obs_0,action_0,next_obs_0\n0,1,2,3\n";
   EXPECT_NE(error_of([&] { read_demonstrations(dir / "bad_layout.csv"); }).find("bad_layout.csv:1: layout part 'position' (2 values from 3) lies outside"),
             std::string::npos);
+}
+
+TEST(AdversarialConfig, BehaviourContextsTakeOneExpertFileEach) {
+  const auto dir = test::temp_dir("adversarial_contexts");
+  const Demonstrations small = oscillator_expert(2);
+  Demonstrations large = small;  // a second behaviour: the same orbit at twice the radius
+  large.obs *= 2, large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", small);
+  write_demonstrations(dir / "large.csv", large);
+  TrainOptions o;
+  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 10); };
+  const std::string experts = "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]";
+  const std::string text = "collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, " + experts + "}\n";
+  Trainer t(parse_train_config(text, "ctx.yaml"), o);
+  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  ASSERT_NE(source, nullptr);
+  // Expert rows: the next state (x', v') of each file, then the file's one-hot context.
+  const torch::Tensor e = source->discriminator().expert();
+  ASSERT_EQ(e.size(0), 2 * small.size());
+  ASSERT_EQ(e.size(1), 4);
+  for (int i : {0, small.size() - 1}) {
+    EXPECT_FLOAT_EQ(e[i][0].item<float>(), static_cast<float>(small.next_obs(i, 0)));
+    EXPECT_FLOAT_EQ(e[i][2].item<float>(), 1.0f);
+    EXPECT_FLOAT_EQ(e[i][3].item<float>(), 0.0f);
+    EXPECT_FLOAT_EQ(e[small.size() + i][1].item<float>(), static_cast<float>(large.next_obs(i, 1)));
+    EXPECT_FLOAT_EQ(e[small.size() + i][2].item<float>(), 0.0f);
+    EXPECT_FLOAT_EQ(e[small.size() + i][3].item<float>(), 1.0f);
+  }
+  // The policy's rows take the context from the observation.
+  Rollout r;
+  r.input_size = 4, r.frame_size = 4, r.action_size = 1;
+  r.raw_input = {0.5, 0.5, 1, 0};
+  r.next_obs = {0.6, 0.4, 0, 1};
+  r.action = {0};
+  r.env_reward = {0};
+  EXPECT_EQ(source->features().of(r), (FeatureRows(1, 4) << 0.6f, 0.4f, 0, 1).finished());
+
+  auto error = [&](const std::string& cfg) {
+    return error_of([&] { Trainer bad(parse_train_config(cfg, "ctx.yaml"), o); });
+  };
+  EXPECT_NE(error("rewards: [{source: gail, experts: [" + (dir / "small.csv").string() + "]}]")
+                .find("names 1 files: the environment needs env.context with count 1"),
+            std::string::npos);
+  EXPECT_NE(error("rewards: [{source: gail, expert: a.csv, " + experts + "}]").find("give either 'rewards.expert'"), std::string::npos);
 }
 
 TEST(Record, KeepsEveryNthStepOfEachEpisodeFromThePolicy) {

@@ -1,0 +1,38 @@
+#pragma once
+// Seed 000's behaviour context: one policy learns several behaviours (run straight, veer left,
+// veer right) when a one-hot context c is appended to its observation and to what its
+// discriminator sees. The context is drawn uniformly at every start and re-drawn every `period`
+// steps during training (seed 000: every 5 s), so the policy also learns the transitions between
+// behaviours; at run time a keyboard or a high-level controller sets it (set_context).
+#include <memory>
+
+#include "env/env.hpp"
+
+namespace mimic {
+
+class ContextEnv : public Env {
+ public:
+  // `contexts` >= 2; `period` steps between draws (0: only at reset). Throws Error otherwise.
+  ContextEnv(std::unique_ptr<Env> inner, int contexts, int period);
+
+  int observation_size() const override { return inner_->observation_size() + contexts_; }
+  int action_size() const override { return inner_->action_size(); }
+  // The inner layout, then {"context", inner size, contexts}.
+  std::vector<ObservationSlice> observation_layout() const override;
+  Eigen::VectorXd reset(std::mt19937_64& rng) override;
+  StepResult step(const Eigen::VectorXd& action) override;
+  const mjModel_* physics_model() const override { return inner_->physics_model(); }
+  mjData_* physics_data() const override { return inner_->physics_data(); }
+
+  int context() const { return context_; }
+  void set_context(int c);  // Error outside [0, contexts)
+  int contexts() const { return contexts_; }
+
+ private:
+  Eigen::VectorXd with_context(const Eigen::VectorXd& obs) const;
+  std::unique_ptr<Env> inner_;
+  int contexts_, period_, context_ = 0, steps_ = 0;
+  std::mt19937_64 rng_;  // seeded from reset's generator: re-draws replay with the episode
+};
+
+}  // namespace mimic
