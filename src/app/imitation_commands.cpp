@@ -9,7 +9,10 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "env/env_factory.hpp"
+#include "learn/clip_demonstrations.hpp"
 #include "learn/trainer.hpp"
+#include "motion/clip_io.hpp"
 
 namespace mimic::app {
 
@@ -55,6 +58,33 @@ void add_imitation_commands(CLI::App& app) {
     write_demonstrations(args->out, d);
     spdlog::info("wrote {}: {} samples from {} episodes (every {} steps), mean episode return {:.1f}", args->out.string(), d.size(),
                  d.episodes(), args->every, mean(returns));
+  });
+
+  struct ClipArgs {
+    std::filesystem::path config, clip, character, out;
+    int passes = 4;
+  };
+  auto clip_args = std::make_shared<ClipArgs>();
+  CLI::App* rc = app.add_subcommand("record-clip", "demonstrations from a motion clip: the environment's observations of its states (no actions)");
+  rc->add_option("config", clip_args->config, "training config whose env is a character environment (e.g. humanoid_forward)")
+      ->required()->check(CLI::ExistingFile);
+  rc->add_option("--clip", clip_args->clip, "motion clip (.mclip, .bvh, .amc, DeepMimic .txt)")->required()->check(CLI::ExistingFile);
+  rc->add_option("--character", clip_args->character, "DeepMimic character file of a .txt clip (default: found by its name)");
+  rc->add_option("--passes", clip_args->passes, "passes over the clip, offset by a fraction of a control step")->capture_default_str()->check(CLI::PositiveNumber);
+  rc->add_option("-o,--output", clip_args->out, "output .csv")->required();
+  rc->callback([clip_args] {
+    const TrainConfig cfg = load_train_config(clip_args->config);
+    if (!cfg.env.IsDefined()) throw Error(clip_args->config.string() + ": no 'env' section");
+    const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
+    auto* character_env = dynamic_cast<CharacterEnv*>(env.get());
+    if (!character_env) throw Error(clip_args->config.string() + ": its environment has no simulated character to pose from a clip");
+    LoadOptions load;
+    load.character = clip_args->character;
+    const Clip clip = load_motion(clip_args->clip, load);
+    const Demonstrations d = clip_demonstrations(*character_env, clip, clip_args->passes);
+    write_demonstrations(clip_args->out, d);
+    spdlog::info("wrote {}: {} transitions of {} ({} passes), {} observation values", clip_args->out.string(), d.size(), clip.name,
+                 clip_args->passes, d.obs.cols());
   });
 
   struct CloneArgs {

@@ -10,6 +10,10 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
+#include "env/humanoid_forward.hpp"
+#include "learn/clip_demonstrations.hpp"
+#include "motion/clip_io.hpp"
+#include "motion/deepmimic.hpp"
 #include "learn/adversarial_reward.hpp"
 #include "learn/trainer_impl.hpp"
 #include "toy_env.hpp"
@@ -269,4 +273,35 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
   EXPECT_LT(error_late, 0.1 * error_early);
   EXPECT_LT(caught_late, caught_early - 0.1);
   EXPECT_GT(reward_late, reward_early + 0.05);
+}
+
+TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
+  std::filesystem::path dir;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", dir);
+  dir = dir.parent_path();
+  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+  const auto walk = std::make_shared<const Clip>(load_deepmimic_motion(dir.parent_path() / "motions/humanoid3d_walk.txt", ch.skeleton));
+  HumanoidForwardConfig cfg;
+  cfg.init_noise = 0.0;
+  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  const Demonstrations d = clip_demonstrations(*env, *walk, 2);
+  const int per_pass = static_cast<int>(std::floor(walk->duration() * 30.0));  // 30 Hz control
+  EXPECT_NEAR(d.size(), 2 * per_pass, 2);
+  EXPECT_EQ(d.episodes(), 2);
+  EXPECT_EQ(d.action.cols(), 0);
+  EXPECT_EQ(d.obs.cols(), env->observation_size());
+  EXPECT_EQ(d.layout.size(), env->observation_layout().size());
+  // Within a pass, each transition starts where the previous one ended.
+  for (int i = 0; i + 1 < per_pass - 1; ++i) EXPECT_TRUE(d.next_obs.row(i).isApprox(d.obs.row(i + 1), 1e-9)) << i;
+  // The observation follows the clip: consecutive states differ.
+  EXPECT_GT((d.next_obs.row(0) - d.obs.row(0)).norm(), 1e-3);
+  // A round trip through a file keeps the 0 action columns.
+  const auto tmp = test::temp_dir("clip_demos");
+  write_demonstrations(tmp / "walk.csv", d);
+  EXPECT_EQ(read_demonstrations(tmp / "walk.csv").action.cols(), 0);
+  // A clip of another body is refused.
+  std::filesystem::path dog_dir;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/dog3d.txt", dog_dir);
+  const Clip dog = load_motion(dir.parent_path() / "motions/dog3d_trot.txt", LoadOptions{});
+  EXPECT_NE(error_of([&] { clip_demonstrations(*env, dog); }).find("does not fit the environment's character"), std::string::npos);
 }
