@@ -1,5 +1,8 @@
 // Behavioural cloning: supervised regression of the policy mean on expert (state, action) pairs,
 // the baseline adversarial imitation is compared with (seed 002 section 3.2.1 and A.2).
+#include <algorithm>
+#include <numeric>
+
 #include "core/error.hpp"
 #include "learn/trainer_impl.hpp"
 

@@ -1,5 +1,8 @@
 #include "learn/discriminator.hpp"
 
+#include <algorithm>
+#include <numeric>
+
 #include "core/error.hpp"
 #include "learn/archive_util.hpp"
 
