@@ -305,3 +305,36 @@ TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   const Clip dog = load_motion(dir.parent_path() / "motions/dog3d_trot.txt", LoadOptions{});
   EXPECT_NE(error_of([&] { clip_demonstrations(*env, dog); }).find("does not fit the environment's character"), std::string::npos);
 }
+
+TEST(AdversarialImitation, ACheckpointedRunResumesExactlyWithItsDiscriminator) {
+  const auto dir = test::temp_dir("gail_resume");
+  write_demonstrations(dir / "expert.csv", oscillator_expert(4));
+  // The ensemble with every piece of state: replay buffer, gradient penalty draws, Adam moments.
+  const std::string text = gail_config(dir / "expert.csv", 4, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2");
+  auto without_time = [](const IterationMetrics& m) {
+    std::vector<double> out;
+    for (const auto& [n, v] : m.values)
+      if (n != "wall_s" && n != "samples_per_s" && n.rfind("time_", 0) != 0) out.push_back(v);
+    return out;
+  };
+  std::vector<std::vector<double>> straight, resumed;
+  {
+    TrainOptions o = oscillator_options();
+    o.run_dir = dir / "straight";
+    Trainer t(parse_train_config(text + "checkpoint_every: 2\n", "osc.yaml"), o);
+    for (int i = 0; i < 4; ++i) straight.push_back(without_time(t.iterate()));
+  }
+  {
+    TrainOptions o = oscillator_options();
+    o.run_dir = dir / "halves";
+    Trainer t(parse_train_config(text + "checkpoint_every: 2\n", "osc.yaml"), o);
+    for (int i = 0; i < 2; ++i) resumed.push_back(without_time(t.iterate()));
+  }
+  TrainOptions o = oscillator_options();
+  o.run_dir = dir / "halves";
+  o.resume = true;
+  Trainer t(parse_train_config(text + "checkpoint_every: 2\n", "osc.yaml"), o);
+  ASSERT_EQ(t.iteration(), 2);
+  for (int i = 0; i < 2; ++i) resumed.push_back(without_time(t.iterate()));
+  EXPECT_EQ(resumed, straight);
+}
