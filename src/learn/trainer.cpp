@@ -24,8 +24,6 @@ void single_threaded_math() {
   if (auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
 }
 
-std::vector<ObservationSlice> layout_of(const EnvFactory& factory) { return factory()->observation_layout(); }
-
 double mean_of(const std::vector<double>& v) {
   return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
@@ -255,20 +253,27 @@ Eigen::VectorXd Trainer::act(const Eigen::VectorXd& input) const {
 
 double Trainer::evaluate(int episodes, std::uint64_t seed) { return mean_of(run_episodes(episodes, seed, true).returns); }
 
+Rollout Trainer::Impl::side_episodes(int episodes, std::uint64_t seed, std::mt19937_64& rng, bool deterministic, EpisodeStats& stats) {
+  Collector side(factory, std::min(episodes, cfg.collect.envs), cfg.collect.threads, cfg.policy.net.history, seed);
+  Rollout r = side.collect_episodes(episodes, learner->policy(), learner->value(), obs_norm, rng, deterministic);
+  stats = side.take_episode_stats();
+  return r;
+}
+
 EpisodeStats Trainer::run_episodes(int episodes, std::uint64_t seed, bool deterministic) {
-  Collector eval(impl_->factory, std::min(episodes, impl_->cfg.collect.envs), impl_->cfg.collect.threads, impl_->cfg.policy.net.history, seed);
+  EpisodeStats stats;
   std::mt19937_64 rng(seed);
-  (void)eval.collect_episodes(episodes, impl_->learner->policy(), impl_->learner->value(), impl_->obs_norm, rng, deterministic);
-  return eval.take_episode_stats();
+  (void)impl_->side_episodes(episodes, seed, rng, deterministic, stats);
+  return stats;
 }
 
 Demonstrations Trainer::record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns) {
   if (episodes < 1 || every < 1) throw Error("record: episodes and every must be >= 1");
   const int frame = impl_->collector->input_size() / impl_->cfg.policy.net.history;
-  Collector rec(impl_->factory, std::min(episodes, impl_->cfg.collect.envs), impl_->cfg.collect.threads, impl_->cfg.policy.net.history, seed);
-  std::mt19937_64 rng(seed);
-  const Rollout r = rec.collect_episodes(episodes, impl_->learner->policy(), impl_->learner->value(), impl_->obs_norm, rng, deterministic);
-  if (returns) *returns = rec.take_episode_stats().returns;
+  EpisodeStats stats;
+  std::mt19937_64 rng(seed);  // action noise, then the sub-sampling offsets
+  const Rollout r = impl_->side_episodes(episodes, seed, rng, deterministic, stats);
+  if (returns) *returns = stats.returns;
   std::vector<std::pair<int, int>> kept;  // (sample, episode)
   int episode = 0;
   std::uniform_int_distribution<int> offset_of(0, every - 1);
@@ -281,7 +286,7 @@ Demonstrations Trainer::record(int episodes, int every, bool deterministic, std:
     }
   }
   Demonstrations d;
-  d.layout = layout_of(impl_->factory);
+  d.layout = impl_->factory()->observation_layout();
   const auto n = static_cast<Eigen::Index>(kept.size());
   d.obs.resize(n, frame);
   d.next_obs.resize(n, frame);

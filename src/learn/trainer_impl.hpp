@@ -32,6 +32,10 @@ struct Trainer::Impl {
   // Rewards of the configured sources, weighted and (optionally) scaled, into rollout.reward.
   void compute_rewards(Rollout& r);
   PpoBatch make_batch(const Rollout& r) const;
+  // Complete episodes on environments of their own (evaluation, recording): training's
+  // environments and generators are not touched.
+  // `seed` seeds the environments, `rng` draws the action noise.
+  Rollout side_episodes(int episodes, std::uint64_t seed, std::mt19937_64& rng, bool deterministic, EpisodeStats& stats);
 };
 
 // Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong.
