@@ -8,6 +8,7 @@
 #include "env/planar_walker.hpp"
 #include "motion/clip_io.hpp"
 #include "env/reacher_arm.hpp"
+#include "env/tracking.hpp"
 
 namespace mimic {
 
@@ -44,6 +45,20 @@ std::filesystem::path data_path(const std::string& given, const char* key) {
               (shared.empty() ? std::string("the shared data directory, which is absent: set MIMIC_DATA") : shared.string()) + ")");
 }
 
+// A DeepMimic character (with its PD file when one lies beside it) and a clip for it.
+std::shared_ptr<const CharacterModel> load_character(const std::string& character) {
+  const std::filesystem::path ch_path = data_path(character, "character");
+  const std::filesystem::path ctrl = ch_path.parent_path() / (ch_path.stem().string() + "_ctrl.txt");
+  return std::make_shared<const CharacterModel>(
+      CharacterModel::from_deepmimic(ch_path, std::filesystem::exists(ctrl) ? ctrl : std::filesystem::path{}));
+}
+
+std::shared_ptr<const Clip> load_clip(const std::string& clip_file, const std::string& character) {
+  LoadOptions load;
+  load.character = data_path(character, "character");
+  return std::make_shared<const Clip>(load_motion(data_path(clip_file, "clip"), load));
+}
+
 EnvFactory humanoid_forward(ConfigSection& s) {
   HumanoidForwardConfig c;
   const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
@@ -56,27 +71,50 @@ EnvFactory humanoid_forward(ConfigSection& s) {
   c.lateral_weight = s.number("lateral_weight", c.lateral_weight, 0, 1e6);
   c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
-  const std::filesystem::path ch_path = data_path(character, "character");
-  const std::filesystem::path ctrl = ch_path.parent_path() / (ch_path.stem().string() + "_ctrl.txt");
-  auto ch = std::make_shared<const CharacterModel>(
-      CharacterModel::from_deepmimic(ch_path, std::filesystem::exists(ctrl) ? ctrl : std::filesystem::path{}));
-  LoadOptions load;
-  load.character = ch_path;
-  auto clip = std::make_shared<const Clip>(load_motion(data_path(clip_file, "clip"), load));
+  auto ch = load_character(character);
+  auto clip = load_clip(clip_file, character);
   return [ch, clip, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clip, c)); };
+}
+
+EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
+  TrackingConfig c;
+  const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
+  const std::string clip_file = s.text("clip", "deepmimic/motions/humanoid3d_walk.txt");
+  c.init = s.choice("init", "reference", {"reference", "fixed"}) == "reference" ? TrackingConfig::Init::Reference
+                                                                                 : TrackingConfig::Init::Fixed;
+  c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
+  c.early_termination = s.boolean("early_termination", c.early_termination);
+  c.fall_links = s.texts("fall_links", c.fall_links);
+  c.observations.names = s.texts("observations", c.observations.names);
+  c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
+  c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);
+  ConfigSection w(reader, s.child("weights"), "env.weights");
+  c.weights = {w.number("pose", c.weights.pose, 0, 1e6), w.number("velocity", c.weights.velocity, 0, 1e6),
+               w.number("end_effector", c.weights.end_effector, 0, 1e6), w.number("com", c.weights.com, 0, 1e6)};
+  w.finish();
+  ConfigSection k(reader, s.child("scales"), "env.scales");
+  c.scales = {k.number("pose", c.scales.pose, 0, 1e6), k.number("velocity", c.scales.velocity, 0, 1e6),
+              k.number("end_effector", c.scales.end_effector, 0, 1e6), k.number("com", c.scales.com, 0, 1e6)};
+  k.finish();
+  auto ch = load_character(character);
+  auto clip = load_clip(clip_file, character);
+  return [ch, clip, c] { return std::unique_ptr<Env>(make_tracking_env(*ch, clip, c)); };
 }
 
 }  // namespace
 
-std::string env_names() { return "planar_walker, reacher, humanoid_forward"; }
+std::string env_names() { return "planar_walker, reacher, humanoid_forward, tracking"; }
 
 EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   ConfigSection s(reader, env, "env");
-  const std::string name = s.choice("name", "", {"planar_walker", "reacher", "humanoid_forward"});
+  const std::string name = s.choice("name", "", {"planar_walker", "reacher", "humanoid_forward", "tracking"});
   if (name.empty()) reader.fail(env, "'env': missing 'name' (one of " + env_names() + ")");
   EnvFactory f;
   try {
-    f = name == "planar_walker" ? planar_walker(s) : name == "reacher" ? reacher(s) : humanoid_forward(s);
+    f = name == "planar_walker" ? planar_walker(s)
+        : name == "reacher"     ? reacher(s)
+        : name == "tracking"    ? tracking(s, reader)
+                                : humanoid_forward(s);
   } catch (const ParseError&) {
     throw;
   } catch (const Error& e) {

@@ -13,7 +13,7 @@ namespace mimic {
 // Builds a fresh, independent environment each call (one per worker slot).
 using EnvFactory = std::function<std::unique_ptr<Env>()>;
 
-// `env` is the mapping {name: planar_walker | reacher | humanoid_forward, ...its options}.
+// `env` is the mapping {name: planar_walker | reacher | humanoid_forward | tracking, ...its options}.
 // Checks every key now (and builds one environment) so that errors surface before training.
 EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader);
 

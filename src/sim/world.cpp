@@ -106,6 +106,27 @@ Pose World::pose() const {
   return p;
 }
 
+PoseVelocity World::velocity() const {
+  const Skeleton& sk = ch_.skeleton;
+  PoseVelocity v;
+  v.joint_ang.assign(sk.joints.size(), Vec3::Zero());
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int a = qpos_[j], k = dof_[j];
+    switch (sk.joints[j].type) {
+      case JointType::Free: {
+        const Quat q(d_->qpos[a + 3], d_->qpos[a + 4], d_->qpos[a + 5], d_->qpos[a + 6]);
+        v.root_lin = Vec3(d_->qvel[k], d_->qvel[k + 1], d_->qvel[k + 2]);
+        v.root_ang = q.normalized() * Vec3(d_->qvel[k + 3], d_->qvel[k + 4], d_->qvel[k + 5]);
+        break;
+      }
+      case JointType::Spherical: v.joint_ang[j] = Vec3(d_->qvel[k], d_->qvel[k + 1], d_->qvel[k + 2]); break;
+      case JointType::Revolute: v.joint_ang[j] = sk.joints[j].axis * d_->qvel[k]; break;
+      case JointType::Fixed: break;
+    }
+  }
+  return v;
+}
+
 void World::set_pd_targets(const Pose& targets) {
   if (targets.rot.size() != ch_.skeleton.joints.size()) throw Error("set_pd_targets: wrong number of joints");
   set_targets(targets.rot);

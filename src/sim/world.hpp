@@ -39,6 +39,8 @@ class World {
   void set_state(const Pose& pose, const PoseVelocity* vel = nullptr);
   // The current pose (root position and rotation, joint rotations).
   Pose pose() const;
+  // The current velocities, as set_state takes them (root in the world frame, joints in their own).
+  PoseVelocity velocity() const;
   // PD targets: one rotation per joint (root ignored). Torques are clamped to torque limits.
   void set_pd_targets(const Pose& targets);
   // Advances one control step (physics_hz / control_hz physics steps).

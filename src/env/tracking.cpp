@@ -1,0 +1,146 @@
+#include "env/tracking.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+namespace {
+
+// Joints that move: the root and every spherical or revolute joint.
+bool tracked(const Joint& j) { return j.type != JointType::Fixed; }
+
+double squared(double x) { return x * x; }
+
+}  // namespace
+
+TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales) {
+  double pose = 0, vel = 0, ee = 0;
+  int joints = 0, effectors = 0;
+  const HeadingFrame sim_heading = HeadingFrame::of(sim.pose), ref_heading = HeadingFrame::of(ref.pose);
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const Joint& jt = sk.joints[j];
+    if (tracked(jt)) {
+      ++joints;
+      pose += squared(rotation_distance(ref.pose.rot[j], sim.pose.rot[j]));
+      const Vec3 w_sim = j == 0 ? sim.velocity.root_ang : sim.velocity.joint_ang[j];
+      const Vec3 w_ref = j == 0 ? ref.velocity.root_ang : ref.velocity.joint_ang[j];
+      vel += (w_ref - w_sim).squaredNorm();
+    }
+    if (jt.end_effector) {
+      ++effectors;
+      const Vec3 p_sim = sim_heading.dir_to_local(sim.links.joint_pos[j] - sim.links.joint_pos[0]);
+      const Vec3 p_ref = ref_heading.dir_to_local(ref.links.joint_pos[j] - ref.links.joint_pos[0]);
+      ee += (p_ref - p_sim).squaredNorm();
+    }
+  }
+  TrackingTerms t;
+  if (joints > 0) {
+    t.pose = std::exp(-scales.pose * pose / joints);
+    t.velocity = std::exp(-scales.velocity * vel / joints);
+  }
+  if (effectors > 0) t.end_effector = std::exp(-scales.end_effector * ee / effectors);
+  t.com = std::exp(-scales.com * (ref.com - sim.com).squaredNorm());
+  return t;
+}
+
+MassModel::MassModel(const World& world) {
+  const mjModel* m = world.model();
+  const Skeleton& sk = world.character().skeleton;
+  for (const Joint& j : sk.joints) {
+    const int b = mj_name2id(m, mjOBJ_BODY, j.name.c_str());
+    if (b < 0) throw Error("MassModel: the model has no body '" + j.name + "'");
+    mass_.push_back(m->body_mass[b]);
+    local_com_.emplace_back(m->body_ipos[3 * b], m->body_ipos[3 * b + 1], m->body_ipos[3 * b + 2]);
+    total_ += m->body_mass[b];
+  }
+  if (!(total_ > 0)) throw Error("MassModel: the character has no mass");
+}
+
+Vec3 MassModel::centre_of_mass(const LinkFrames& links) const {
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t j = 0; j < mass_.size(); ++j) sum += mass_[j] * (links.joint_pos[j] + links.joint_rot[j] * local_com_[j]);
+  return sum / total_;
+}
+
+TrackedState reference_state(const Clip& clip, const MassModel& masses, double t) {
+  TrackedState s;
+  std::tie(s.pose, s.velocity) = clip_state(clip, t);
+  forward_kinematics(clip.skeleton, s.pose, s.links);
+  s.com = masses.centre_of_mass(s.links);
+  return s;
+}
+
+namespace {
+
+void check(const TrackingConfig& cfg, const CharacterModel& ch, const Clip* clip) {
+  auto fail = [](const std::string& what) { throw Error("tracking: " + what); };
+  if (!clip) fail("needs a reference clip");
+  if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
+    fail("clip '" + clip->name + "' does not fit character '" + ch.name + "' (" + std::to_string(clip->skeleton.num_joints()) +
+         " joints, the character has " + std::to_string(ch.skeleton.num_joints()) + ")");
+  if (clip->num_frames() < 2) fail("clip '" + clip->name + "' has fewer than 2 frames");
+  const std::pair<const char*, double> values[] = {
+      {"weights.pose", cfg.weights.pose},       {"weights.velocity", cfg.weights.velocity},
+      {"weights.end_effector", cfg.weights.end_effector}, {"weights.com", cfg.weights.com},
+      {"scales.pose", cfg.scales.pose},         {"scales.velocity", cfg.scales.velocity},
+      {"scales.end_effector", cfg.scales.end_effector},   {"scales.com", cfg.scales.com}};
+  for (const auto& [name, v] : values)
+    if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
+}
+
+// Appends the four weighted terms after each step, against the reference at the step's time.
+class TrackingEnv final : public CharacterEnv {
+ public:
+  TrackingEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg, std::shared_ptr<const Clip> clip,
+              const TrackingConfig& cfg)
+      : CharacterEnv(ch, env_cfg, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales) {}
+
+  StepResult step(const Eigen::VectorXd& action) override {
+    StepResult r = CharacterEnv::step(action);
+    const World& w = world();
+    sim_.pose = w.pose();
+    sim_.velocity = w.velocity();
+    sim_.links = w.link_frames();
+    sim_.com = w.centre_of_mass();
+    const TrackedState ref = reference_state(*reference(), masses_, time());
+    const TrackingTerms t = tracking_terms(w.character().skeleton, sim_, ref, scales_);
+    r.reward_terms.emplace_back("pose", weights_.pose * t.pose);
+    r.reward_terms.emplace_back("velocity", weights_.velocity * t.velocity);
+    r.reward_terms.emplace_back("end_effector", weights_.end_effector * t.end_effector);
+    r.reward_terms.emplace_back("com", weights_.com * t.com);
+    return r;
+  }
+
+ private:
+  MassModel masses_;
+  TrackingWeights weights_;
+  TrackingScales scales_;
+  TrackedState sim_;  // storage reused every step
+};
+
+}  // namespace
+
+std::unique_ptr<CharacterEnv> make_tracking_env(const CharacterModel& ch, std::shared_ptr<const Clip> clip,
+                                                const TrackingConfig& cfg) {
+  check(cfg, ch, clip.get());
+  CharacterEnvConfig env_cfg;
+  env_cfg.sim = cfg.sim;
+  env_cfg.observations = cfg.observations;
+  env_cfg.max_seconds = cfg.max_seconds;
+  env_cfg.early_termination = cfg.early_termination;
+  env_cfg.fall_links = cfg.fall_links;
+  auto env = std::make_unique<TrackingEnv>(ch, env_cfg, clip, cfg);
+  if (cfg.init == TrackingConfig::Init::Reference) {
+    env->set_init_sampler([clip](std::mt19937_64& rng) {
+      std::uniform_real_distribution<double> when(0.0, clip->duration());
+      return init_state_from_clip(*clip, when(rng));
+    });
+  }  // Fixed: CharacterEnv's default start, the clip's first frame
+  return env;
+}
+
+}  // namespace mimic

@@ -1,0 +1,79 @@
+#pragma once
+// Motion tracking (seed 003 section 7.2, the DeepMimic objective): the character follows a
+// reference clip at the current phase and is rewarded, per control step, by
+//   r = 0.65 r_pose + 0.10 r_velocity + 0.15 r_end_effector + 0.10 r_com,   each in [0, 1]:
+//   r_pose         exp(-2   * mean_j angle(q*_j ^-1 q_j)^2)    joint rotations, the root's in the world
+//   r_velocity     exp(-0.1 * mean_j |w*_j - w_j|^2)           joint angular velocities (own frames)
+//   r_end_effector exp(-40  * mean_e |p*_e - p_e|^2)           hands and feet relative to the root,
+//                                                               each in its own heading frame
+//   r_com          exp(-10  * |c* - c|^2)                       centre of mass in the world
+// Means, not the paper's sums: DeepMimic's implementation (which seed 003 builds on) normalises its
+// joint weights to sum 1 and divides the end-effector error by their count; with sums the kernels
+// of a 13-joint humanoid would be near zero for any early policy. A step's reward is at most 1, so
+// an episode's normalised return (SFV) is its return divided by its step count at full length.
+// Reference velocities are finite differences of the clip. The clip sets the episode: a
+// non-cyclic one ends it at its end; a cyclic one goes on (root drift and heading change per
+// cycle carried by Clip::sample) until max_seconds.
+#include <memory>
+
+#include "env/character_env.hpp"
+
+namespace mimic {
+
+struct TrackingWeights {
+  double pose = 0.65, velocity = 0.10, end_effector = 0.15, com = 0.10;
+};
+struct TrackingScales {
+  double pose = 2.0, velocity = 0.1, end_effector = 40.0, com = 10.0;
+};
+
+// What the reward compares, of the simulated character or of the reference at one instant.
+struct TrackedState {
+  Pose pose;
+  PoseVelocity velocity;
+  LinkFrames links;
+  Vec3 com = Vec3::Zero();
+};
+
+// The four kernels, each in [0, 1] (1: identical).
+struct TrackingTerms {
+  double pose = 1, velocity = 1, end_effector = 1, com = 1;
+};
+TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales = {});
+
+// The character's masses, to place the reference's centre of mass from its link frames.
+class MassModel {
+ public:
+  explicit MassModel(const World& world);
+  Vec3 centre_of_mass(const LinkFrames& links) const;
+
+ private:
+  std::vector<double> mass_;     // per joint (its body)
+  std::vector<Vec3> local_com_;  // body centre of mass in the joint's frame
+  double total_ = 0.0;
+};
+
+// The reference's state at clip time t.
+TrackedState reference_state(const Clip& clip, const MassModel& masses, double t);
+
+struct TrackingConfig {
+  enum class Init {
+    Fixed,      // FSI: the clip's first frame
+    Reference,  // RSI: a uniformly random time on the clip
+  };
+  Init init = Init::Reference;
+  TrackingWeights weights;
+  TrackingScales scales;
+  double max_seconds = 20.0;       // cyclic clips; a non-cyclic clip ends at its end
+  bool early_termination = true;   // off for contact-rich clips (roll, get-up)
+  std::vector<std::string> fall_links;  // empty: the character's own choice
+  ObservationConfig observations{.names = {"full_state", "phase"}};
+  SimConfig sim;
+};
+
+// The environment; reward terms are named pose, velocity, end_effector and com (weighted).
+// Throws Error on a clip that does not fit the character, a negative weight or scale.
+std::unique_ptr<CharacterEnv> make_tracking_env(const CharacterModel& ch, std::shared_ptr<const Clip> clip,
+                                                const TrackingConfig& cfg = {});
+
+}  // namespace mimic

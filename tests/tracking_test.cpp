@@ -1,0 +1,239 @@
+// Seed 003's tracking reward: each kernel against hand-computed values, the simulated state read
+// back exactly as the reference's, and how tracking episodes start and end.
+#include "env/tracking.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/yaml_reader.hpp"
+#include "env/env_factory.hpp"
+#include "motion/deepmimic.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+// root (free) -> arm (spherical, 1 m along x) -> hand (fixed, 1 m further, an end effector).
+Skeleton arm_skeleton() {
+  Skeleton sk;
+  auto add = [&](const char* name, int parent, JointType type, const Vec3& offset, bool end_effector) {
+    Joint j;
+    j.name = name, j.parent = parent, j.type = type, j.offset = offset, j.end_effector = end_effector;
+    sk.joints.push_back(j);
+  };
+  add("root", -1, JointType::Free, Vec3::Zero(), false);
+  add("arm", 0, JointType::Spherical, Vec3(1, 0, 0), false);
+  add("hand", 1, JointType::Fixed, Vec3(1, 0, 0), true);
+  return sk;
+}
+
+TrackedState state_of(const Skeleton& sk, const Pose& pose) {
+  TrackedState s;
+  s.pose = pose;
+  s.velocity.joint_ang.assign(sk.joints.size(), Vec3::Zero());
+  s.links = forward_kinematics(sk, pose);
+  return s;
+}
+
+CharacterModel humanoid() {
+  const auto dir = test::shared_data() / "deepmimic/characters";
+  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+}
+
+std::shared_ptr<const Clip> motion(const CharacterModel& ch, const char* name) {
+  return std::make_shared<const Clip>(load_deepmimic_motion(test::shared_data() / "deepmimic/motions" / name, ch.skeleton));
+}
+
+#define NEED_HUMANOID()          \
+  std::filesystem::path shared_; \
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
+
+double sum_of_terms(const StepResult& r) {
+  double s = 0;
+  for (const auto& [n, v] : r.reward_terms) s += v;
+  return s;
+}
+
+}  // namespace
+
+TEST(TrackingReward, IdenticalStatesScoreOneOnEveryTerm) {
+  const Skeleton sk = arm_skeleton();
+  Pose p = rest_pose(sk, Vec3(0.3, -0.2, 1.0));
+  p.rot[0] = rotvec_to_quat(Vec3(0.1, 0.2, 1.3));
+  p.rot[1] = rotvec_to_quat(Vec3(0.4, -0.3, 0.2));
+  TrackedState s = state_of(sk, p);
+  s.velocity.root_ang = Vec3(1, 2, 3);
+  s.velocity.joint_ang[1] = Vec3(-1, 0.5, 2);
+  s.com = Vec3(0.5, 0.1, 0.9);
+  const TrackingTerms t = tracking_terms(sk, s, s);
+  EXPECT_DOUBLE_EQ(t.pose, 1.0);
+  EXPECT_DOUBLE_EQ(t.velocity, 1.0);
+  EXPECT_DOUBLE_EQ(t.end_effector, 1.0);
+  EXPECT_DOUBLE_EQ(t.com, 1.0);
+}
+
+TEST(TrackingReward, KnownOffsetsGiveHandComputedKernels) {
+  const Skeleton sk = arm_skeleton();
+  const Pose ref_pose = rest_pose(sk, Vec3(0, 0, 1));
+  Pose sim_pose = ref_pose;
+  sim_pose.rot[1] = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitZ()));  // the arm turned 0.3 rad
+  const TrackedState ref = state_of(sk, ref_pose);
+  TrackedState sim = state_of(sk, sim_pose);
+  sim.velocity.root_ang = Vec3(0, 0, 1);  // the root spinning at 1 rad/s, the reference still
+  sim.com = ref.com + Vec3(0.1, 0, 0);
+  const TrackingTerms t = tracking_terms(sk, sim, ref);
+  // Two tracked joints (root, arm; the hand is fixed): pose mean (0 + 0.3^2) / 2.
+  EXPECT_NEAR(t.pose, std::exp(-2.0 * 0.09 / 2), 1e-12);
+  // Velocity mean (1^2 + 0) / 2.
+  EXPECT_NEAR(t.velocity, std::exp(-0.1 * 0.5), 1e-12);
+  // The hand at (1 + cos 0.3, sin 0.3) from the root instead of (2, 0): |d|^2 = 2 - 2 cos 0.3.
+  EXPECT_NEAR(t.end_effector, std::exp(-40.0 * (2 - 2 * std::cos(0.3))), 1e-12);
+  EXPECT_NEAR(t.com, std::exp(-10.0 * 0.01), 1e-12);
+  // Scales come from the config.
+  const TrackingTerms half = tracking_terms(sk, sim, ref, TrackingScales{1.0, 0.05, 20.0, 5.0});
+  EXPECT_NEAR(half.pose, std::exp(-0.09 / 2), 1e-12);
+  EXPECT_NEAR(half.com, std::exp(-0.05), 1e-12);
+}
+
+TEST(TrackingReward, EndEffectorsAreComparedInEachOwnHeadingFrame) {
+  // The same pose turned about +Z and moved: hands relative to the root, each in its own
+  // heading frame, are unchanged; the centre of mass and root rotation are not.
+  const Skeleton sk = arm_skeleton();
+  Pose a = rest_pose(sk, Vec3(0, 0, 1));
+  a.rot[1] = rotvec_to_quat(Vec3(0.2, 0.3, 0.4));
+  Pose b = a;
+  b.root_pos = Vec3(3, -2, 1);
+  b.rot[0] = heading_rotation(1.2) * a.rot[0];
+  const TrackingTerms t = tracking_terms(sk, state_of(sk, b), state_of(sk, a));
+  EXPECT_NEAR(t.end_effector, 1.0, 1e-12);
+  EXPECT_NEAR(t.pose, std::exp(-2.0 * 1.2 * 1.2 / 2), 1e-12);
+}
+
+TEST(TrackingReward, SimulatedStateReadsBackAsTheReferenceAtTheStart) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  TrackingConfig cfg;
+  cfg.init = TrackingConfig::Init::Fixed;
+  auto env = make_tracking_env(ch, walk, cfg);
+  const double t0 = 0.4;
+  env->reset(init_state_from_clip(*walk, t0));
+  const World& w = env->world();
+  const MassModel masses(w);
+  const TrackedState ref = reference_state(*walk, masses, t0);
+  TrackedState sim{w.pose(), w.velocity(), w.link_frames(), w.centre_of_mass()};
+  // World::velocity inverts set_state's velocities; the mass model places MuJoCo's centre of mass.
+  for (std::size_t j = 0; j < ref.velocity.joint_ang.size(); ++j)
+    EXPECT_LT((sim.velocity.joint_ang[j] - ref.velocity.joint_ang[j]).norm(), 1e-9) << ch.skeleton.joints[j].name;
+  EXPECT_LT((sim.velocity.root_ang - ref.velocity.root_ang).norm(), 1e-9);
+  EXPECT_LT((sim.velocity.root_lin - ref.velocity.root_lin).norm(), 1e-9);
+  EXPECT_LT((sim.com - ref.com).norm(), 2e-3);
+  EXPECT_GT(ch.total_mass(), 10.0);
+  const TrackingTerms t = tracking_terms(ch.skeleton, sim, ref);
+  EXPECT_GT(t.pose, 0.999);
+  EXPECT_GT(t.velocity, 0.999);
+  EXPECT_GT(t.end_effector, 0.99);
+  EXPECT_GT(t.com, 0.999);
+}
+
+TEST(TrackingEnv, FollowingTheClipScoresHighAndAStillPoseScoresLow) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  TrackingConfig cfg;
+  cfg.init = TrackingConfig::Init::Fixed;
+  auto env = make_tracking_env(ch, walk, cfg);
+  std::mt19937_64 rng(1);
+  env->reset(rng);
+  EXPECT_DOUBLE_EQ(env->time(), 0.0);
+  // PD targets = the clip's next pose: the servos follow it for a few steps.
+  double follow = 0, still = 0;
+  auto targets = [&](const Pose& p) {
+    Eigen::VectorXd a(env->action_size());
+    Eigen::Index k = 0;
+    for (std::size_t j = 1; j < ch.skeleton.joints.size(); ++j) {
+      const Joint& jt = ch.skeleton.joints[j];
+      if (jt.type == JointType::Spherical) a.segment<3>(k) = quat_to_rotvec(p.rot[j]), k += 3;
+      if (jt.type == JointType::Revolute) a[k++] = revolute_angle(jt, p.rot[j]);
+    }
+    return a;
+  };
+  for (int i = 1; i <= 5; ++i) follow += sum_of_terms(env->step(targets(walk->sample(i / 30.0))));
+  env->reset(rng);
+  const Eigen::VectorXd hold = targets(walk->sample(0.0));
+  for (int i = 1; i <= 5; ++i) still += sum_of_terms(env->step(hold));
+  EXPECT_GT(follow / 5, 0.6);
+  EXPECT_LT(still, follow);
+  const StepResult r = env->step(hold);
+  ASSERT_EQ(r.reward_terms.size(), 4u);
+  EXPECT_EQ(r.reward_terms[0].first, "pose");
+  EXPECT_LE(r.reward_terms[0].second, 0.65);
+  EXPECT_LE(r.reward_terms[2].second, 0.15);
+}
+
+TEST(TrackingEnv, StartsFixedOrAnywhereOnTheClipAndEndsAsTheClipSays) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto kick = motion(ch, "humanoid3d_kick.txt");
+  ASSERT_EQ(kick->loop, LoopMode::None);
+  TrackingConfig cfg;
+  cfg.early_termination = false;
+  auto rsi = make_tracking_env(ch, kick, cfg);
+  std::mt19937_64 rng(3);
+  std::vector<double> starts;
+  for (int i = 0; i < 20; ++i) {
+    rsi->reset(rng);
+    starts.push_back(rsi->time());
+    EXPECT_GE(rsi->time(), 0.0);
+    EXPECT_LE(rsi->time(), kick->duration());
+  }
+  EXPECT_GT(*std::max_element(starts.begin(), starts.end()) - *std::min_element(starts.begin(), starts.end()), kick->duration() / 3);
+  // A non-cyclic clip ends the episode at its end.
+  cfg.init = TrackingConfig::Init::Fixed;
+  auto fsi = make_tracking_env(ch, kick, cfg);
+  fsi->reset(rng);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(fsi->action_size());
+  int steps = 0;
+  StepResult r;
+  do r = fsi->step(zero), ++steps;
+  while (!r.done() && steps < 1000);
+  EXPECT_EQ(r.termination, Termination::ClipEnd);
+  EXPECT_NEAR(steps, std::ceil(kick->duration() * 30 - 1e-6), 1);
+}
+
+TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {
+  NEED_HUMANOID();
+  const YamlReader reader("test.yaml");
+  const EnvFactory f = make_env_factory(
+      reader.parse("{name: tracking, clip: deepmimic/motions/humanoid3d_run.txt, init: fixed, max_seconds: 2,"
+                   " weights: {pose: 1, velocity: 0, end_effector: 0, com: 0}}",
+                   "bad"),
+      reader);
+  auto env = f();
+  std::mt19937_64 rng(1);
+  env->reset(rng);
+  const StepResult r = env->step(Eigen::VectorXd::Zero(env->action_size()));
+  EXPECT_GT(r.reward_terms[0].second, 0.0);
+  EXPECT_EQ(r.reward_terms[1].second, 0.0);
+  EXPECT_EQ(r.reward_terms[3].second, 0.0);
+  // The phase is part of the default observation.
+  bool phase = false;
+  for (const auto& s : env->observation_layout()) phase |= s.name == "phase";
+  EXPECT_TRUE(phase);
+  // A dog clip on the humanoid (its file and line), an unknown key, a negative scale.
+  auto message = [](const std::string& text) {
+    try {
+      const YamlReader bad("bad.yaml");
+      (void)make_env_factory(bad.parse(text, "invalid"), bad);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("{name: tracking, clip: deepmimic/motions/dog3d_trot.txt}").find("dog3d_trot.txt:"), std::string::npos);
+  EXPECT_NE(message("{name: tracking, wieghts: {pose: 1}}").find("wieghts"), std::string::npos);
+  EXPECT_NE(message("{name: tracking, scales: {com: -1}}").find("scales.com"), std::string::npos);
+}
