@@ -1,6 +1,6 @@
 // mimic record RUN -o demos.csv: expert demonstrations from a trained policy, for adversarial
 // imitation (rewards: [{source: gail, expert: demos.csv}]); mimic clone: the behavioural-cloning
-// baseline; mimic eval RUN: episode returns of a trained policy.
+// baseline.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -18,22 +18,7 @@ namespace mimic::app {
 
 namespace {
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
 double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
-double stddev(const std::vector<double>& v) {
-  const double m = mean(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return std::sqrt(s / static_cast<double>(v.size()));
-}
 
 }  // namespace
 
@@ -118,32 +103,6 @@ void add_imitation_commands(CLI::App& app) {
     trainer.save_checkpoint(clone->out / "checkpoint.pt");
     spdlog::info("cloned {} samples ({} episodes) in {} epochs: final mean squared error {:.4f}; wrote {}", d.size(), d.episodes(),
                  clone->epochs, loss, clone->out.string());
-  });
-
-  struct EvalArgs {
-    std::filesystem::path run, json;
-    int episodes = 20;
-    bool stochastic = false;
-    std::uint64_t seed = 12345;
-  };
-  auto eval = std::make_shared<EvalArgs>();
-  CLI::App* ev = app.add_subcommand("eval", "evaluate a trained policy: episode return, length and failures");
-  ev->add_option("run", eval->run, "training run directory")->required()->check(CLI::ExistingDirectory);
-  ev->add_option("--episodes", eval->episodes, "episodes")->capture_default_str()->check(CLI::PositiveNumber);
-  ev->add_flag("--stochastic", eval->stochastic, "sample actions (default: the policy's mean)");
-  ev->add_option("--seed", eval->seed, "random seed of the episodes")->capture_default_str();
-  ev->add_option("--json", eval->json, "also write the figures to this JSON file");
-  ev->callback([eval] {
-    const EpisodeStats s = Trainer::load_policy(eval->run)->run_episodes(eval->episodes, eval->seed, !eval->stochastic);
-    const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
-    const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
-    spdlog::info("{}: {} episodes ({} actions): return {:.1f} +- {:.1f}, length {:.1f}, fall rate {:.2f}", eval->run.string(),
-                 s.returns.size(), eval->stochastic ? "sampled" : "mean", mean(s.returns), stddev(s.returns), mean(lengths), fall_rate);
-    if (!eval->json.empty())
-      write_file_atomic(eval->json, fmt::format("{{\"run\": {}, \"episodes\": {}, \"actions\": \"{}\", \"return_mean\": {}, "
-                                                "\"return_std\": {}, \"episode_length\": {}, \"fall_rate\": {}}}\n",
-                                                json_string(eval->run.string()), s.returns.size(), eval->stochastic ? "sampled" : "mean", mean(s.returns),
-                                                stddev(s.returns), mean(lengths), fall_rate));
   });
 }
 

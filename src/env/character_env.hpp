@@ -58,6 +58,9 @@ class CharacterEnv : public Env {
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
   void add_reward_term(std::string name, RewardTerm term) { rewards_.emplace_back(std::move(name), std::move(term)); }
+  // The most one step can earn, for normalised returns; 0 when the task does not bound it.
+  double max_step_reward() const { return max_step_reward_; }
+  void set_max_step_reward(double r) { max_step_reward_ = r; }
   // Replaces the pushes (e.g. new random pushes per episode); throws Error on an unknown link.
   void set_pushes(std::vector<PushSpec> pushes);
 
@@ -91,6 +94,7 @@ class CharacterEnv : public Env {
   Pusher pusher_;
   std::unique_ptr<ProjectileLauncher> launcher_;
   double time_ = 0.0, elapsed_ = 0.0;
+  double max_step_reward_ = 0.0;
 };
 
 }  // namespace mimic

@@ -97,7 +97,9 @@ class TrackingEnv final : public CharacterEnv {
  public:
   TrackingEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg, std::shared_ptr<const Clip> clip,
               const TrackingConfig& cfg)
-      : CharacterEnv(ch, env_cfg, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales) {}
+      : CharacterEnv(ch, env_cfg, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales) {
+    set_max_step_reward(weights_.pose + weights_.velocity + weights_.end_effector + weights_.com);
+  }
 
   StepResult step(const Eigen::VectorXd& action) override {
     StepResult r = CharacterEnv::step(action);

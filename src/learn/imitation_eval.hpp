@@ -1,0 +1,41 @@
+#pragma once
+// How closely a policy reproduces a reference clip, by the protocol of DESIGN.md section 5:
+//   imitation error (seed 004 eq. 7): the mean over links of the distance between the simulated
+//     and the reference link positions in the world, averaged over one motion cycle (the clip's
+//     duration) from a start on the clip, over trials started at evenly spaced phases (i / n of
+//     the clip); reported as mean and standard deviation over the trials, in metres.
+//   normalised return (seed 003): each trial's full episode return (a fall ends it: nothing more
+//     is earned) divided by the most its episode could earn (steps to the time limit or the
+//     clip's end, times the environment's maximum reward per step); only where that maximum is known.
+// A trial that falls keeps being measured to the end of its cycle: the character lies where it
+// fell and its error grows, as the paper's error of a failed imitation does.
+// Torch-free: the policy is any function from a stacked input to an action.
+#include <functional>
+#include <vector>
+
+#include "env/character_env.hpp"
+
+namespace mimic {
+
+// Mean over links (joints) of |sim - ref| (metres). Throws Error when the link counts differ.
+double link_position_error(const LinkFrames& sim, const LinkFrames& ref);
+// Mean of link_position_error over the frames of two trajectories of equal length.
+double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<LinkFrames>& ref);
+
+struct ImitationReport {
+  std::vector<double> trial_errors;   // per trial: the error averaged over its cycle
+  std::vector<double> trial_returns;  // per trial: normalised return (empty when not known)
+  int falls = 0;                      // trials whose character fell within the full episode
+  double cycle_seconds = 0.0;
+  double error_mean() const;
+  double error_std() const;
+  double normalised_return_mean() const;  // NaN when not known
+};
+
+// Runs `trials` episodes of `env` from the reference `clip` (the env's own reference when null)
+// acting by `act` on inputs of `history` stacked frames. Throws Error without a clip, with a clip
+// that does not fit the character, or trials < 1.
+using PolicyFunction = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip = nullptr);
+
+}  // namespace mimic
