@@ -30,6 +30,43 @@ void read_normalizer(InputArchive& a, const std::string& key, RunningNormalizer&
   n.set_state(get(sub, "count").item<double>(), tensor_vec(get(sub, "mean")), tensor_vec(get(sub, "m2")));
 }
 
+// ASI's parameters, its pending episodes and its step count (exact resume).
+OutputArchive adaptive_init_archive(const Trainer::Impl& t) {
+  const AdaptiveInit& d = *t.adaptive_init;
+  auto flat = [](const Eigen::MatrixXd& m) { return vec_tensor(Eigen::Map<const Eigen::VectorXd>(m.data(), m.size())); };
+  OutputArchive o;
+  o.write("means", flat(d.means()));
+  o.write("log_std", flat(d.log_std()));
+  o.write("updates", torch::tensor(static_cast<std::int64_t>(t.init_updates)));
+  const auto n = static_cast<Eigen::Index>(t.init_pending.size());
+  Eigen::VectorXd component(n), ret(n);
+  Eigen::MatrixXd x(d.dims(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto& p = t.init_pending[static_cast<std::size_t>(i)];
+    component[i] = p.component, ret[i] = p.ret, x.col(i) = p.x;
+  }
+  o.write("pending_component", vec_tensor(component));
+  o.write("pending_return", vec_tensor(ret));
+  o.write("pending_x", flat(x));
+  return o;
+}
+
+void read_adaptive_init(Trainer::Impl& t, InputArchive& a) {
+  AdaptiveInit& d = *t.adaptive_init;
+  const Eigen::Index k = d.components(), dims = d.dims();
+  auto matrix = [&](const std::string& key, Eigen::Index rows, Eigen::Index cols) {
+    const Eigen::VectorXd v = tensor_vec(get(a, key));
+    if (v.size() != rows * cols) throw Error("adaptive_init." + key + ": " + std::to_string(v.size()) + " values, expected " + std::to_string(rows * cols));
+    return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(v.data(), rows, cols));
+  };
+  d.set_parameters(matrix("means", k, dims), matrix("log_std", k, dims));
+  t.init_updates = static_cast<int>(get(a, "updates").item<std::int64_t>());
+  const Eigen::VectorXd component = tensor_vec(get(a, "pending_component")), ret = tensor_vec(get(a, "pending_return"));
+  const Eigen::MatrixXd x = matrix("pending_x", dims, component.size());
+  t.init_pending.clear();
+  for (Eigen::Index i = 0; i < component.size(); ++i)
+    t.init_pending.push_back({static_cast<int>(component[i]), x.col(i), ret[i]});
+}
 }  // namespace
 
 void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path) {
@@ -66,6 +103,10 @@ void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path)
     sources.write(std::to_string(i), s);
   }
   a.write("reward_sources", sources);
+  if (t.adaptive_init) {
+    OutputArchive asi = adaptive_init_archive(t);
+    a.write("adaptive_init", asi);
+  }
   std::ostringstream out;
   a.save_to(out);
   write_file_atomic(path, out.str());
@@ -120,6 +161,11 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
       InputArchive s;
       sources.read(std::to_string(i), s);
       t.rewards[i].second->load(s);
+    }
+    if (t.adaptive_init) {
+      InputArchive asi;
+      a.read("adaptive_init", asi);
+      read_adaptive_init(t, asi);
     }
     t.learner->check_parameters(t.iteration);
   } catch (const c10::Error& e) {

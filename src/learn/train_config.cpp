@@ -106,6 +106,16 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
   c.normalize.rewards = norm.boolean("rewards", c.normalize.rewards);
   norm.finish();
 
+  ConfigSection init(r, top.child("init"), "init");
+  c.init.kind = init.choice("kind", c.init.kind, {"env", "adaptive"});
+  AdaptiveInitConfig& asi = c.init.adaptive;
+  asi.components = static_cast<int>(init.integer("components", asi.components, 1, 10'000));
+  asi.step = init.number("step", asi.step, 0, 1e3);
+  asi.batch_episodes = static_cast<int>(init.integer("episodes", asi.batch_episodes, 1, 100'000'000));
+  asi.std_scale = init.number("std_scale", asi.std_scale, 0, 1e3);
+  asi.min_std = init.number("min_std", asi.min_std, 1e-9, 1e3);
+  init.finish();
+
   const YAML::Node rewards = top.child("rewards");
   if (rewards.IsDefined()) {
     if (!rewards.IsSequence() || rewards.size() == 0) r.fail(rewards, "'rewards': expected a non-empty list of {source, weight}");

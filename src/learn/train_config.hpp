@@ -67,6 +67,21 @@ struct NormalizeConfig {
   bool rewards = false;  // divide rewards by the running std of discounted returns (seed 002)
 };
 
+// Seed 003's adaptive state initialisation (learn/adaptive_init.hpp).
+struct AdaptiveInitConfig {
+  int components = 10;        // k (seed 003 compares 5, 10, 20)
+  double step = 0.1;          // natural-gradient step (learn/adaptive_init.hpp)
+  int batch_episodes = 2000;  // episodes per gradient step
+  double std_scale = 1.0;     // initial sigma = the clip's sample std * std_scale
+  double min_std = 1e-3;
+};
+
+// Where training episodes start: the environment's own choice (`env`), or ASI (`adaptive`).
+struct InitConfig {
+  std::string kind = "env";
+  AdaptiveInitConfig adaptive;
+};
+
 // One reward source and its weight; the trainer sums weight * reward over the sources.
 struct RewardSourceConfig {
   std::string source = "env";  // env: the environment's task reward
@@ -87,6 +102,7 @@ struct TrainConfig {
   OptimizerConfig optimizer;
   CollectConfig collect;
   NormalizeConfig normalize;
+  InitConfig init;
   std::vector<RewardSourceConfig> rewards{RewardSourceConfig{}};
   std::string source;  // where it came from (file path or label), for messages
   std::string text;    // the YAML as read, stored with checkpoints

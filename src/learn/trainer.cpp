@@ -41,7 +41,19 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
     if (!cfg.env.IsDefined()) throw Error(cfg.source + ": missing 'env': the environment to train in (e.g. env: {name: planar_walker})");
     factory = make_env_factory(cfg.env, YamlReader(cfg.source));
   }
-  collector = std::make_unique<Collector>(factory, cfg.collect.envs, cfg.collect.threads, cfg.policy.net.history, cfg.seed);
+  EnvFactory collect_factory = factory;
+  if (cfg.init.kind == "adaptive") {
+    const std::unique_ptr<Env> probe = factory();
+    const auto* character = dynamic_cast<const CharacterEnv*>(probe.get());
+    if (!character || !character->reference())
+      throw Error(cfg.source + ": 'init: {kind: adaptive}' needs a character environment with a reference clip (e.g. env: {name: tracking})");
+    adaptive_init = std::make_shared<AdaptiveInit>(std::make_shared<const Clip>(*character->reference()),
+                                                   character->world().character().skeleton, cfg.init.adaptive);
+    collect_factory = [inner = factory, dist = adaptive_init, gamma = cfg.ppo.gamma] {
+      return std::unique_ptr<Env>(std::make_unique<AdaptiveInitEnv>(inner(), dist, gamma));
+    };
+  }
+  collector = std::make_unique<Collector>(collect_factory, cfg.collect.envs, cfg.collect.threads, cfg.policy.net.history, cfg.seed);
   if (cfg.value.history != cfg.policy.net.history)
     throw Error(cfg.source + ": 'value.history' (" + std::to_string(cfg.value.history) + ") must equal 'policy.history' (" +
                 std::to_string(cfg.policy.net.history) + "): both see the same input");
@@ -172,7 +184,24 @@ IterationMetrics Trainer::Impl::iterate() {
   m.set("time_learning", learn_seconds);
   for (const auto& [name, sum] : r.term_sums) m.set("term_" + name, sum / r.size());
   for (const auto& [name, v] : source_metrics) m.set(name, v);
+  if (adaptive_init) update_adaptive_init(m);
   return m;
+}
+
+void Trainer::Impl::update_adaptive_init(IterationMetrics& m) {
+  for (int e = 0; e < collector->envs(); ++e)
+    for (auto& o : dynamic_cast<AdaptiveInitEnv&>(collector->env(e)).take_outcomes()) init_pending.push_back(std::move(o));
+  if (static_cast<int>(init_pending.size()) >= cfg.init.adaptive.batch_episodes) {
+    adaptive_init->update(init_pending);
+    init_pending.clear();
+    ++init_updates;
+  }
+  // How far the distribution has moved: mean |mean| and mean sigma, both over the initial sigma.
+  const AdaptiveInit& d = *adaptive_init;
+  const Eigen::RowVectorXd sigma0 = d.initial_std().transpose();
+  m.set("init_updates", init_updates);
+  m.set("init_mean_shift", (d.means().array().abs().rowwise() / sigma0.array()).mean());
+  m.set("init_std_ratio", (d.log_std().array().exp().rowwise() / sigma0.array()).mean());
 }
 
 Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "env/env_factory.hpp"
+#include "learn/adaptive_init.hpp"
 #include "learn/collector.hpp"
 #include "learn/ppo.hpp"
 #include "learn/reward_source.hpp"
@@ -21,6 +22,11 @@ struct Trainer::Impl {
   RunningNormalizer return_norm;            // running std of discounted returns (reward scaling)
   std::vector<double> discounted_return;    // per environment, for reward scaling
   std::vector<std::pair<double, std::unique_ptr<RewardSource>>> rewards;
+  // ASI (init: {kind: adaptive}): the distribution the collector's environments start from, and
+  // the finished episodes not yet used for a gradient step.
+  std::shared_ptr<AdaptiveInit> adaptive_init;
+  std::vector<AdaptiveInit::Outcome> init_pending;
+  int init_updates = 0;
   std::mt19937_64 noise_rng, shuffle_rng;
   int iteration = 0;
   long long samples = 0;
@@ -32,6 +38,8 @@ struct Trainer::Impl {
   // Rewards of the configured sources, weighted and (optionally) scaled, into rollout.reward.
   void compute_rewards(Rollout& r);
   PpoBatch make_batch(const Rollout& r) const;
+  // Gathers the collector's finished ASI episodes in environment order; a gradient step per full batch.
+  void update_adaptive_init(IterationMetrics& m);
   // Complete episodes on environments of their own (evaluation, recording): training's
   // environments and generators are not touched.
   // `seed` seeds the environments, `rng` draws the action noise.
