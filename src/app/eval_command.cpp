@@ -1,7 +1,8 @@
 // mimic eval RUN: one measurement for every policy (DESIGN.md section 5): episode return, length
 // and fall rate; for a character with a reference clip (the env's own, or --clip), the imitation
-// error over one cycle from evenly spaced phases and the normalised return. A table on the
-// terminal, and the same figures as JSON with --json.
+// error over one cycle from evenly spaced phases and the normalised return; with --robustness,
+// seed 004's projectile test (frames survived per cube mass). A table on the terminal, and the
+// same figures as JSON with --json.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/character_env.hpp"
+#include "env/env_factory.hpp"
 #include "learn/imitation_eval.hpp"
 #include "learn/trainer.hpp"
 
@@ -41,9 +43,41 @@ double stddev(const std::vector<double>& v) {
 struct EvalArgs {
   std::filesystem::path run, json, clip, character;
   int episodes = 20, trials = 20;
+  std::vector<double> masses;  // robustness: projectile masses (kg)
+  int robustness_trials = 20;
+  double robustness_seconds = 10.0;
   bool stochastic = false;
   std::uint64_t seed = 12345;
 };
+
+// Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
+std::string robustness(const EvalArgs& args, const Trainer& trainer) {
+  const std::filesystem::path config = args.run / "config.yaml";
+  const int max_frames = static_cast<int>(std::lround(args.robustness_seconds * 30.0));
+  spdlog::info("  robustness      cubes of 0.2 m at 0.2 m/s at the torso every frame; {} trials per mass, at most {} frames; "
+               "failure: lying on the ground 10 frames",
+               args.robustness_trials, max_frames);
+  std::string json = ", \"robustness\": [";
+  for (std::size_t i = 0; i < args.masses.size(); ++i) {
+    const double mass = args.masses[i];
+    const std::string text = override_config(read_text_file(config), config.string(),
+                                             {fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass),
+                                              fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0), "rewards=[{source: env}]"});
+    const TrainConfig cfg = parse_train_config(text, config.string());
+    const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
+    auto* character = dynamic_cast<CharacterEnv*>(env.get());
+    if (!character) throw Error(args.run.string() + ": robustness needs a character environment");
+    if (std::abs(character->config().sim.control_hz - 30.0) > 1e-9)
+      throw Error(args.run.string() + ": robustness counts frames at 30 Hz; this environment runs at " +
+                  std::to_string(character->config().sim.control_hz) + " Hz");
+    const PolicyFunction act = [&](const Eigen::VectorXd& input) { return trainer.act(input); };
+    const RobustnessReport r = measure_robustness(*character, act, trainer.config().policy.net.history, args.robustness_trials, max_frames);
+    spdlog::info("    {:6.2f} kg     {:.1f} +- {:.1f} frames survived", mass, r.mean(), r.std());
+    json += fmt::format("{}{{\"mass\": {}, \"frames_mean\": {}, \"frames_std\": {}, \"trials\": {}, \"max_frames\": {}}}", i ? ", " : "", mass,
+                        r.mean(), r.std(), r.frames.size(), max_frames);
+  }
+  return json + "]";
+}
 
 void evaluate(const EvalArgs& args) {
   const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args.run);
@@ -86,6 +120,7 @@ void evaluate(const EvalArgs& args) {
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
+  if (!args.masses.empty()) json += robustness(args, *trainer);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 
@@ -101,6 +136,13 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   ev->add_option("--clip", args->clip, "reference clip for the imitation error (default: the environment's own)")->check(CLI::ExistingFile);
   ev->add_option("--character", args->character, "DeepMimic character file of a .txt --clip (default: found by its name)");
+  ev->add_option("--robustness", args->masses, "projectile masses (kg) for seed 004's robustness test, e.g. 1,5,10,20")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  ev->add_option("--robustness-trials", args->robustness_trials, "trials per mass (seed 004: 1,000)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ev->add_option("--robustness-seconds", args->robustness_seconds, "longest trial (s)")->capture_default_str()->check(CLI::PositiveNumber);
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();
   ev->add_option("--json", args->json, "also write the figures to this JSON file");

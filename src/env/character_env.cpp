@@ -125,12 +125,16 @@ Eigen::VectorXd CharacterEnv::observe() {
   return out;
 }
 
+bool CharacterEnv::fall_contact() const {
+  if (fall_joints_.empty()) return false;
+  const std::vector<bool> contact = world_.ground_contacts();
+  for (int j : fall_joints_)
+    if (contact[static_cast<std::size_t>(j)]) return true;
+  return false;
+}
+
 Termination CharacterEnv::check_termination() const {
-  if (cfg_.early_termination && !fall_joints_.empty()) {
-    const std::vector<bool> contact = world_.ground_contacts();
-    for (int j : fall_joints_)
-      if (contact[static_cast<std::size_t>(j)]) return Termination::Fall;
-  }
+  if (cfg_.early_termination && fall_contact()) return Termination::Fall;
   if (reference_ && reference_->loop != LoopMode::Wrap && time_ >= reference_->duration() - 1e-9) return Termination::ClipEnd;
   if (elapsed_ >= cfg_.max_seconds - 1e-9) return Termination::TimeLimit;
   return Termination::None;

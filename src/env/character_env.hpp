@@ -73,6 +73,9 @@ class CharacterEnv : public Env {
   double elapsed() const { return elapsed_; }
   const CharacterEnvConfig& config() const { return cfg_; }
   const Terrain& terrain() const { return terrain_; }
+  // Does a body whose contact counts as a fall touch the ground now (whether or not that ends
+  // episodes)? The robustness test counts frames lying on the ground.
+  bool fall_contact() const;
   // The projectile launcher (null unless config().projectiles.enabled); its stats are per episode.
   const ProjectileLauncher* projectiles() const { return launcher_.get(); }
   ProjectileLauncher* projectiles() { return launcher_.get(); }

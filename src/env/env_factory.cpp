@@ -59,6 +59,21 @@ std::shared_ptr<const Clip> load_clip(const std::string& clip_file, const std::s
   return std::make_shared<const Clip>(load_motion(data_path(clip_file, "clip"), load));
 }
 
+// Seed 004's projectile test (sim/perturbation.hpp): cubes launched at the torso.
+ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader, const char* path) {
+  ProjectileSpec p;
+  ConfigSection s(reader, parent.child("projectiles"), path);
+  p.enabled = s.boolean("enabled", p.enabled);
+  p.mass = s.number("mass", p.mass, 1e-6, 1e6);
+  p.size = s.number("size", p.size, 1e-3, 10);
+  p.speed = s.number("speed", p.speed, 0, 1e3);
+  p.distance = s.number("distance", p.distance, 1e-3, 100);
+  p.every = static_cast<int>(s.integer("every", p.every, 1, 100'000));
+  p.target = s.text("target", p.target);
+  s.finish();
+  return p;
+}
+
 EnvFactory humanoid_forward(ConfigSection& s) {
   HumanoidForwardConfig c;
   const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
@@ -88,6 +103,7 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.observations.names = s.texts("observations", c.observations.names);
   c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
   c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);
+  c.projectiles = read_projectiles(s, reader, "env.projectiles");
   ConfigSection w(reader, s.child("weights"), "env.weights");
   c.weights = {w.number("pose", c.weights.pose, 0, 1e6), w.number("velocity", c.weights.velocity, 0, 1e6),
                w.number("end_effector", c.weights.end_effector, 0, 1e6), w.number("com", c.weights.com, 0, 1e6)};

@@ -69,6 +69,7 @@ struct TrackingConfig {
   std::vector<std::string> fall_links;  // empty: the character's own choice
   ObservationConfig observations{.names = {"full_state", "phase"}};
   SimConfig sim;
+  ProjectileSpec projectiles;  // seed 004's robustness test when enabled
 };
 
 // The environment; reward terms are named pose, velocity, end_effector and com (weighted).

@@ -33,17 +33,20 @@ double mean_of(const std::vector<double>& v) {
   return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 
+double std_of(const std::vector<double>& v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double m = mean_of(v);
+  double ss = 0;
+  for (double e : v) ss += (e - m) * (e - m);
+  return std::sqrt(ss / static_cast<double>(v.size()));
+}
+
 }  // namespace
 
 double ImitationReport::error_mean() const { return mean_of(trial_errors); }
-
-double ImitationReport::error_std() const {
-  if (trial_errors.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const double m = error_mean();
-  double ss = 0;
-  for (double e : trial_errors) ss += (e - m) * (e - m);
-  return std::sqrt(ss / static_cast<double>(trial_errors.size()));
-}
+double ImitationReport::error_std() const { return std_of(trial_errors); }
+double RobustnessReport::mean() const { return mean_of(frames); }
+double RobustnessReport::std() const { return std_of(frames); }
 
 double ImitationReport::normalised_return_mean() const { return mean_of(trial_returns); }
 
@@ -91,6 +94,39 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     report.trial_errors.push_back(trajectory_error(sim_frames, ref_frames));
     if (fell) ++report.falls;
     if (max_step > 0) report.trial_returns.push_back(ret / (episode_steps * max_step));
+  }
+  return report;
+}
+
+RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act, int history, int trials, int max_frames,
+                                    int lying_frames, std::uint64_t seed) {
+  if (trials < 1 || max_frames < 1 || lying_frames < 1) throw Error("robustness: trials, frames and lying frames must be at least 1");
+  const Clip* clip = env.reference();
+  const double low_root = 0.5 * env.world().character().rest_root_height();
+  RobustnessReport report;
+  report.max_frames = max_frames;
+  FrameHistory frames(history);
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < trials; ++i) {
+    frames.reset(clip ? env.reset(init_state_from_clip(*clip, clip->duration() * i / trials)) : env.reset(rng));
+    if (ProjectileLauncher* launcher = env.projectiles()) launcher->reseed(seed * 1000003 + static_cast<std::uint64_t>(i));
+    int lying = 0, survived = max_frames;
+    for (int t = 1; t <= max_frames; ++t) {
+      const StepResult r = env.step(act(frames.stacked()));
+      frames.push(r.observation);
+      // Down: a fall body on the ground, or the root below half its standing height (lying on cubes).
+      const bool down = env.fall_contact() || env.world().pose().root_pos.z() < low_root;
+      lying = down ? lying + 1 : 0;
+      if (lying >= lying_frames) {
+        survived = t - lying_frames;  // the frames before it went down for good
+        break;
+      }
+      if (r.termination == Termination::ClipEnd || r.termination == Termination::TimeLimit) {
+        survived = t;
+        break;
+      }
+    }
+    report.frames.push_back(survived);
   }
   return report;
 }

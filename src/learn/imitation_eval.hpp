@@ -38,4 +38,20 @@ struct ImitationReport {
 using PolicyFunction = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
 ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip = nullptr);
 
+// Robustness (seed 004 section 6.4, DESIGN.md section 5): control steps ("frames") a policy keeps
+// the character up before it fails, failing meaning lying on the ground for `lying_frames`
+// consecutive frames (a fall body touching the ground, or the root below half its standing
+// height: lying on a pile of cubes counts); a fall does not end a trial (the character may get
+// up). A trial ends at failure, at `max_frames`, or at the end of a non-cyclic reference. Trials start at
+// evenly spaced phases of the env's reference clip (or from its own reset without one). The
+// projectiles are the environment's (env: {projectiles: {enabled: true, mass: ...}}).
+struct RobustnessReport {
+  std::vector<double> frames;  // per trial: frames survived
+  int max_frames = 0;
+  double mean() const;
+  double std() const;
+};
+RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act, int history, int trials, int max_frames,
+                                    int lying_frames = 10, std::uint64_t seed = 1);
+
 }  // namespace mimic

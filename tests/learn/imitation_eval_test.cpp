@@ -98,3 +98,28 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
   EXPECT_THROW(measure_imitation(*env, hold, 1, 2, &other), Error);
   EXPECT_THROW(measure_imitation(*env, hold, 1, 0), Error);
 }
+
+TEST(Robustness, HeavyCubesFellAStandingHumanoidSoonerThanNone) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const auto dir = test::shared_data() / "deepmimic";
+  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "characters/humanoid3d.txt", dir / "characters/humanoid3d_ctrl.txt");
+  // No reference: trials start standing in the rest pose, which zero PD targets hold.
+  auto frames = [&](double mass) {
+    CharacterEnvConfig cfg;
+    cfg.max_seconds = 10.0;
+    cfg.projectiles.enabled = mass > 0;
+    cfg.projectiles.mass = mass;
+    cfg.projectiles.speed = 1.0;  // seed 004's 0.2 m/s barely moves a character standing still
+    CharacterEnv env(ch, cfg);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
+    const PolicyFunction act = [&](const Eigen::VectorXd&) { return zero; };
+    EXPECT_THROW(measure_robustness(env, act, 1, 0, 120), Error);
+    return measure_robustness(env, act, 1, 3, 120);
+  };
+  const RobustnessReport none = frames(0.0), heavy = frames(20.0);
+  ASSERT_EQ(none.frames.size(), 3u);
+  EXPECT_EQ(none.max_frames, 120);
+  EXPECT_EQ(none.mean(), 120.0);  // standing, untouched, to the end
+  for (double f : heavy.frames) EXPECT_LT(f, 110.0);  // each heavy trial ends lying down
+}
