@@ -1,16 +1,19 @@
 // mimic eval RUN: one measurement for every policy (DESIGN.md section 5): episode return, length
 // and fall rate; for a character with a reference clip (the env's own, or --clip), the imitation
 // error over one cycle from evenly spaced phases and the normalised return; with --robustness,
-// seed 004's projectile test (frames survived per cube mass). A table on the terminal, and the
+// seed 004's projectile test (frames survived per cube mass); with --latency, the policy's
+// forward-pass time at batch 1. A table on the terminal, and the
 // same figures as JSON with --json.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "core/stopwatch.hpp"
 #include "env/character_env.hpp"
 #include "env/env_factory.hpp"
 #include "learn/imitation_eval.hpp"
@@ -43,6 +46,7 @@ double stddev(const std::vector<double>& v) {
 struct EvalArgs {
   std::filesystem::path run, json, clip, character;
   int episodes = 20, trials = 20;
+  bool latency = false;
   std::vector<double> masses;  // robustness: projectile masses (kg)
   int robustness_trials = 20;
   double robustness_seconds = 10.0;
@@ -77,6 +81,24 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
                         r.mean(), r.std(), r.frames.size(), max_frames);
   }
   return json + "]";
+}
+
+// Seed 004 Table 4's runtime cost: one policy forward pass at batch 1 (input normalisation and
+// the mean action included), median of 2,000 after 200 warm-up passes, on this machine's core.
+std::string latency(const Trainer& trainer) {
+  const Eigen::VectorXd input = Eigen::VectorXd::Constant(trainer.input_size(), 0.1);
+  for (int i = 0; i < 200; ++i) (void)trainer.act(input);
+  std::vector<double> us;
+  for (int i = 0; i < 2000; ++i) {
+    const Stopwatch w;
+    (void)trainer.act(input);
+    us.push_back(w.seconds() * 1e6);
+  }
+  std::nth_element(us.begin(), us.begin() + 1000, us.end());
+  const long long params = trainer.policy_parameters();
+  spdlog::info("  latency         policy forward pass at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", us[1000], params,
+               static_cast<double>(params) * 4 / 1e6);
+  return fmt::format(", \"latency\": {{\"policy_us\": {}, \"policy_parameters\": {}}}", us[1000], params);
 }
 
 void evaluate(const EvalArgs& args) {
@@ -121,6 +143,7 @@ void evaluate(const EvalArgs& args) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
   if (!args.masses.empty()) json += robustness(args, *trainer);
+  if (args.latency) json += latency(*trainer);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 
@@ -143,6 +166,7 @@ void add_eval_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   ev->add_option("--robustness-seconds", args->robustness_seconds, "longest trial (s)")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();
   ev->add_option("--json", args->json, "also write the figures to this JSON file");

@@ -250,6 +250,12 @@ void Trainer::run() {
   if (!impl_->opts.run_dir.empty() && !saved) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
 }
 
+long long Trainer::policy_parameters() const {
+  long long n = 0;
+  for (const auto& p : impl_->learner->policy()->parameters()) n += p.numel();
+  return n;
+}
+
 int Trainer::iteration() const { return impl_->iteration; }
 long long Trainer::samples() const { return impl_->samples; }
 int Trainer::input_size() const { return impl_->collector->input_size(); }

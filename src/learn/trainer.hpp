@@ -68,6 +68,8 @@ class Trainer {
   // in, and the policy's mean action for a raw policy input (`history` frames, oldest first).
   std::unique_ptr<Env> make_env() const;
   Eigen::VectorXd act(const Eigen::VectorXd& input) const;
+  // Trainable values of the policy network (its log-std included).
+  long long policy_parameters() const;
 
   // A trained policy from a run directory (config.yaml + checkpoint.pt), for acting only
   // (evaluation, videos, recording): its reward sources are left out, so that a run whose
