@@ -7,6 +7,7 @@
 
 #include "app/policy_video.hpp"
 #include "core/error.hpp"
+#include "env/character_env.hpp"
 #include "learn/frame_history.hpp"
 #include "learn/trainer.hpp"
 #include "render/offscreen.hpp"
@@ -36,6 +37,11 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
   const double fps = 1.0 / (every * control_dt);
   const int steps = static_cast<int>(std::lround(opts.seconds / control_dt));
 
+  // The ghost: the reference pose at the env's clip time, in a second data of the same model.
+  const auto* character = dynamic_cast<const CharacterEnv*>(env.get());
+  if (opts.ghost && (!character || !character->reference()))
+    throw Error(run.string() + ": --ghost needs an environment with a reference clip (e.g. tracking)");
+  std::unique_ptr<mjData, void (*)(mjData*)> ghost(opts.ghost ? mj_makeData(env->physics_model()) : nullptr, mj_deleteData);
   OffscreenRenderer renderer(env->physics_model(), opts.width, opts.height);
   VideoWriter video(out, opts.width, opts.height, fps);
   std::vector<std::uint8_t> rgb;
@@ -50,7 +56,8 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
     if (t % every == 0) {
       CameraSpec cam = opts.camera;
       cam.lookat = Vec3(smoothed.x(), smoothed.y(), opts.camera.lookat.z());
-      renderer.render(data, cam, rgb);
+      if (ghost) character->world().write_pose(character->reference()->sample(character->time()), ghost.get());
+      renderer.render(data, cam, rgb, ghost.get());
       video.write(rgb);
     }
     if (r.done()) {

@@ -13,6 +13,7 @@ struct PolicyVideoOptions {
   double fps = 30.0;  // approximate: a whole number of control steps per frame
   int width = 640, height = 480;
   std::uint64_t seed = 1;
+  bool ghost = false;  // the environment's reference clip drawn translucent over the character
   CameraSpec camera{Vec3(0, 0, 0.9), 4.0, 90.0, -12.0};  // lookat z: height of the point followed
 };
 

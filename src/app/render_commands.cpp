@@ -41,7 +41,7 @@ void add_render_commands(CLI::App& app) {
   CLI::App* render = app.add_subcommand("render", "video (.mp4 or .gif) of a clip played on a simulated character, or of a trained policy");
   render->add_option("input", args->input, "motion file, or a training run directory (its policy acting)")->required()->check(CLI::ExistingPath);
   render->add_option("-o,--output", args->output, "output .mp4 or .gif")->required();
-  render->add_flag("--ghost", args->video.ghost, "also draw the clip as a translucent ghost beside the character");
+  render->add_flag("--ghost", args->video.ghost, "also draw the clip as a translucent ghost beside the character (a run: its reference, over it)");
   render->add_option("--seconds", args->video.seconds, "length (default: the clip's duration)");
   render->add_option("--width", args->video.width, "pixels")->capture_default_str()->check(CLI::Range(16, 1280));
   render->add_option("--height", args->video.height, "pixels")->capture_default_str()->check(CLI::Range(16, 720));
@@ -49,7 +49,7 @@ void add_render_commands(CLI::App& app) {
   render->callback([args] {
     if (std::filesystem::is_directory(args->input)) {
       PolicyVideoOptions o;
-      o.width = args->video.width, o.height = args->video.height;
+      o.width = args->video.width, o.height = args->video.height, o.ghost = args->video.ghost;
       if (args->video.seconds > 0) o.seconds = args->video.seconds;
       const PolicyVideoStats s = render_policy_video(args->input, args->output, o);
       spdlog::info("wrote {} ({} frames at {:.1f} fps); {} episode(s) ended", args->output.string(), s.frames, s.fps, s.episodes.size());

@@ -106,6 +106,27 @@ Pose World::pose() const {
   return p;
 }
 
+void World::write_pose(const Pose& pose, mjData* other) const {
+  const Skeleton& sk = ch_.skeleton;
+  if (pose.rot.size() != sk.joints.size()) throw Error("write_pose: pose has the wrong number of joints");
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int a = qpos_[j];
+    const Quat& q = pose.rot[j];
+    switch (sk.joints[j].type) {
+      case JointType::Free:
+        for (int k = 0; k < 3; ++k) other->qpos[a + k] = pose.root_pos[k];
+        other->qpos[a + 3] = q.w(), other->qpos[a + 4] = q.x(), other->qpos[a + 5] = q.y(), other->qpos[a + 6] = q.z();
+        break;
+      case JointType::Spherical:
+        other->qpos[a] = q.w(), other->qpos[a + 1] = q.x(), other->qpos[a + 2] = q.y(), other->qpos[a + 3] = q.z();
+        break;
+      case JointType::Revolute: other->qpos[a] = revolute_angle(sk.joints[j], q); break;
+      case JointType::Fixed: break;
+    }
+  }
+  mj_kinematics(m_, other);
+}
+
 PoseVelocity World::velocity() const {
   const Skeleton& sk = ch_.skeleton;
   PoseVelocity v;

@@ -39,6 +39,9 @@ class World {
   void set_state(const Pose& pose, const PoseVelocity* vel = nullptr);
   // The current pose (root position and rotation, joint rotations).
   Pose pose() const;
+  // Writes `pose` into `other`, data of this world's model (a ghost to draw), and places its
+  // bodies (mj_kinematics); this world's own state is untouched.
+  void write_pose(const Pose& pose, mjData_* other) const;
   // The current velocities, as set_state takes them (root in the world frame, joints in their own).
   PoseVelocity velocity() const;
   // PD targets: one rotation per joint (root ignored). Torques are clamped to torque limits.
