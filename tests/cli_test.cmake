@@ -30,8 +30,9 @@ function(expect_in text what)
 endfunction()
 
 # The README's main job on its embedded default.
-run_ok(demo -o ${OUT}/demo --no-video)
+run_ok(demo -o ${OUT}/demo --no-video --train-iterations 2)
 expect_in("${LAST_OUT}" "jumping_jack")
+expect_in("${LAST_OUT}" "learning    jumping_jack tracked after 4096 samples: imitation error ")
 foreach(f jumping_jack.mclip jumping_jack.svg summary.txt)
   if(NOT EXISTS ${OUT}/demo/${f})
     message(FATAL_ERROR "demo did not write ${f}")

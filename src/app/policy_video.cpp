@@ -17,10 +17,17 @@ namespace mimic::app {
 
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
   const std::unique_ptr<Trainer> loaded = Trainer::load_policy(run);
-  Trainer& trainer = *loaded;
+  try {
+    return render_policy_video(*loaded, out, opts);
+  } catch (const Error& e) {
+    throw Error(run.string() + ": " + e.what());
+  }
+}
+
+PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
   const std::unique_ptr<Env> env = trainer.make_env();
   mjData* const data = env->physics_data();
-  if (!env->physics_model() || !data) throw Error(run.string() + ": its environment has nothing to draw");
+  if (!env->physics_model() || !data) throw Error("its environment has nothing to draw");
   const int history = trainer.config().policy.net.history;
 
   std::mt19937_64 rng(opts.seed);
@@ -40,7 +47,7 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
   // The ghost: the reference pose at the env's clip time, in a second data of the same model.
   const auto* character = dynamic_cast<const CharacterEnv*>(env.get());
   if (opts.ghost && (!character || !character->reference()))
-    throw Error(run.string() + ": --ghost needs an environment with a reference clip (e.g. tracking)");
+    throw Error("--ghost needs an environment with a reference clip (e.g. tracking)");
   std::unique_ptr<mjData, void (*)(mjData*)> ghost(opts.ghost ? mj_makeData(env->physics_model()) : nullptr, mj_deleteData);
   OffscreenRenderer renderer(env->physics_model(), opts.width, opts.height);
   VideoWriter video(out, opts.width, opts.height, fps);

@@ -6,6 +6,10 @@
 #include "env/env.hpp"
 #include "render/offscreen.hpp"
 
+namespace mimic {
+class Trainer;
+}
+
 namespace mimic::app {
 
 struct PolicyVideoOptions {
@@ -25,5 +29,7 @@ struct PolicyVideoStats {
 
 // Plays RUN/checkpoint.pt (config RUN/config.yaml) deterministically and writes `out` (.mp4/.gif).
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts);
+// The same for a trainer in memory (its environments and current policy).
+PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesystem::path& out, const PolicyVideoOptions& opts);
 
 }  // namespace mimic::app
