@@ -189,3 +189,21 @@ TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {
   for (int i = 0; i < 3; ++i) r = env.step(a);
   EXPECT_GT((r.observation.head(per_frame) - r.observation.tail(per_frame)).norm(), 1e-3);
 }
+
+TEST(CharacterEnv, ActionForIsTheInverseOfTargetsFromAction) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  for (ActionMode mode : {ActionMode::AxisAngle, ActionMode::Quaternion}) {
+    CharacterEnvConfig cfg;
+    cfg.action_mode = mode;
+    const CharacterEnv env(ch, cfg, walk);
+    const Pose& p = walk->frames[11];
+    const Eigen::VectorXd a = env.action_for(p);
+    ASSERT_EQ(a.size(), env.action_size());
+    const Pose back = env.targets_from_action(a);
+    for (std::size_t j = 1; j < p.rot.size(); ++j)
+      EXPECT_LT(rotation_distance(back.rot[j], p.rot[j]), 1e-9) << ch.skeleton.joints[j].name;
+  }
+  EXPECT_THROW((void)CharacterEnv(ch, {}, walk).action_for(Pose{}), Error);
+}

@@ -9,8 +9,7 @@
 #include "core/error.hpp"
 #include "core/yaml_reader.hpp"
 #include "env/env_factory.hpp"
-#include "motion/deepmimic.hpp"
-#include "test_data.hpp"
+#include "humanoid_data.hpp"
 
 using namespace mimic;
 
@@ -37,19 +36,6 @@ TrackedState state_of(const Skeleton& sk, const Pose& pose) {
   s.links = forward_kinematics(sk, pose);
   return s;
 }
-
-CharacterModel humanoid() {
-  const auto dir = test::shared_data() / "deepmimic/characters";
-  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-}
-
-std::shared_ptr<const Clip> motion(const CharacterModel& ch, const char* name) {
-  return std::make_shared<const Clip>(load_deepmimic_motion(test::shared_data() / "deepmimic/motions" / name, ch.skeleton));
-}
-
-#define NEED_HUMANOID()          \
-  std::filesystem::path shared_; \
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
 
 double sum_of_terms(const StepResult& r) {
   double s = 0;
@@ -113,9 +99,9 @@ TEST(TrackingReward, EndEffectorsAreComparedInEachOwnHeadingFrame) {
 }
 
 TEST(TrackingReward, SimulatedStateReadsBackAsTheReferenceAtTheStart) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig cfg;
   cfg.init = TrackingConfig::Init::Fixed;
   auto env = make_tracking_env(ch, walk, cfg);
@@ -140,9 +126,9 @@ TEST(TrackingReward, SimulatedStateReadsBackAsTheReferenceAtTheStart) {
 }
 
 TEST(TrackingEnv, FollowingTheClipScoresHighAndAStillPoseScoresLow) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig cfg;
   cfg.init = TrackingConfig::Init::Fixed;
   auto env = make_tracking_env(ch, walk, cfg);
@@ -151,16 +137,7 @@ TEST(TrackingEnv, FollowingTheClipScoresHighAndAStillPoseScoresLow) {
   EXPECT_DOUBLE_EQ(env->time(), 0.0);
   // PD targets = the clip's next pose: the servos follow it for a few steps.
   double follow = 0, still = 0;
-  auto targets = [&](const Pose& p) {
-    Eigen::VectorXd a(env->action_size());
-    Eigen::Index k = 0;
-    for (std::size_t j = 1; j < ch.skeleton.joints.size(); ++j) {
-      const Joint& jt = ch.skeleton.joints[j];
-      if (jt.type == JointType::Spherical) a.segment<3>(k) = quat_to_rotvec(p.rot[j]), k += 3;
-      if (jt.type == JointType::Revolute) a[k++] = revolute_angle(jt, p.rot[j]);
-    }
-    return a;
-  };
+  auto targets = [&](const Pose& p) { return env->action_for(p); };
   for (int i = 1; i <= 5; ++i) follow += sum_of_terms(env->step(targets(walk->sample(i / 30.0))));
   env->reset(rng);
   const Eigen::VectorXd hold = targets(walk->sample(0.0));
@@ -175,9 +152,9 @@ TEST(TrackingEnv, FollowingTheClipScoresHighAndAStillPoseScoresLow) {
 }
 
 TEST(TrackingEnv, StartsFixedOrAnywhereOnTheClipAndEndsAsTheClipSays) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto kick = motion(ch, "humanoid3d_kick.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto kick = test::humanoid3d_motion(ch, "humanoid3d_kick.txt");
   ASSERT_EQ(kick->loop, LoopMode::None);
   TrackingConfig cfg;
   cfg.early_termination = false;
@@ -205,7 +182,7 @@ TEST(TrackingEnv, StartsFixedOrAnywhereOnTheClipAndEndsAsTheClipSays) {
 }
 
 TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   const YamlReader reader("test.yaml");
   const EnvFactory f = make_env_factory(
       reader.parse("{name: tracking, clip: deepmimic/motions/humanoid3d_run.txt, init: fixed, max_seconds: 2,"

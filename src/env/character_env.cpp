@@ -91,6 +91,29 @@ Pose CharacterEnv::targets_from_action(const Eigen::VectorXd& a) const {
   return t;
 }
 
+Eigen::VectorXd CharacterEnv::action_for(const Pose& targets) const {
+  const Skeleton& sk = world_.character().skeleton;
+  if (targets.rot.size() != sk.joints.size()) throw Error("action_for: the pose has the wrong number of joints");
+  Eigen::VectorXd a(action_size_);
+  Eigen::Index k = 0;
+  for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+    const Joint& jt = sk.joints[j];
+    const Quat& q = targets.rot[j];
+    if (jt.type == JointType::Spherical) {
+      if (cfg_.action_mode == ActionMode::AxisAngle) {
+        a.segment<3>(k) = quat_to_rotvec(q);
+        k += 3;
+      } else {
+        a.segment<4>(k) << q.w(), q.x(), q.y(), q.z();
+        k += 4;
+      }
+    } else if (jt.type == JointType::Revolute) {
+      a[k++] = revolute_angle(jt, q);
+    }
+  }
+  return a;
+}
+
 Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
   InitState s;
   if (init_sampler_) {

@@ -66,6 +66,8 @@ class CharacterEnv : public Env {
 
   // PD targets an action stands for.
   Pose targets_from_action(const Eigen::VectorXd& action) const;
+  // The action that sets these PD targets (its inverse, for scripted playback and tests).
+  Eigen::VectorXd action_for(const Pose& targets) const;
   const World& world() const { return world_; }
   World& world() { return world_; }
   const Clip* reference() const { return reference_.get(); }

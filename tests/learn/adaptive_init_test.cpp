@@ -11,8 +11,7 @@
 #include "core/error.hpp"
 #include "env/tracking.hpp"
 #include "learn/trainer_impl.hpp"
-#include "motion/deepmimic.hpp"
-#include "../test_data.hpp"
+#include "../humanoid_data.hpp"
 
 using namespace mimic;
 
@@ -132,11 +131,9 @@ TEST(AdaptiveInit, GradientStepsMoveTheMeansTowardHighReturns) {
 }
 
 TEST(AdaptiveInit, WrapperRecordsEachEpisodesDiscountedReturn) {
-  std::filesystem::path data;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const auto dir = test::shared_data() / "deepmimic";
-  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "characters/humanoid3d.txt", dir / "characters/humanoid3d_ctrl.txt");
-  auto walk = std::make_shared<const Clip>(load_deepmimic_motion(dir / "motions/humanoid3d_walk.txt", ch.skeleton));
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig tc;
   tc.max_seconds = 0.5;
   AdaptiveInitConfig cfg;
@@ -162,8 +159,7 @@ TEST(AdaptiveInit, WrapperRecordsEachEpisodesDiscountedReturn) {
 }
 
 TEST(AdaptiveInit, TrainerStepsItAndAResumedRunContinuesExactly) {
-  std::filesystem::path data;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  MIMIC_NEED_HUMANOID();
   const std::string text =
       "seed: 3\niterations: 4\ncheckpoint_every: 2\nenv: {name: tracking, max_seconds: 0.3}\ncollect: {envs: 4, samples: 64}\n"
       "policy: {hidden: [8]}\nvalue: {hidden: [8]}\nppo: {epochs: 1, value_epochs: 1}\n"

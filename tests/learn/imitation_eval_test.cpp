@@ -9,8 +9,7 @@
 
 #include "core/error.hpp"
 #include "env/tracking.hpp"
-#include "motion/deepmimic.hpp"
-#include "../test_data.hpp"
+#include "../humanoid_data.hpp"
 
 using namespace mimic;
 
@@ -58,26 +57,15 @@ TEST(ImitationError, ReportsMeanAndSpreadOverTrials) {
 }
 
 TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
-  std::filesystem::path data;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const auto dir = test::shared_data() / "deepmimic";
-  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "characters/humanoid3d.txt", dir / "characters/humanoid3d_ctrl.txt");
-  auto walk = std::make_shared<const Clip>(load_deepmimic_motion(dir / "motions/humanoid3d_walk.txt", ch.skeleton));
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig cfg;
   cfg.max_seconds = 2.0;
   auto env = make_tracking_env(ch, walk, cfg);
   // A "policy" that sets the PD targets to the clip's pose one step ahead (it reads the time
   // from the env, not from its input), and one that holds the first frame's pose.
-  auto targets = [&](const Pose& p) {
-    Eigen::VectorXd a(env->action_size());
-    Eigen::Index k = 0;
-    for (std::size_t j = 1; j < ch.skeleton.joints.size(); ++j) {
-      const Joint& jt = ch.skeleton.joints[j];
-      if (jt.type == JointType::Spherical) a.segment<3>(k) = quat_to_rotvec(p.rot[j]), k += 3;
-      if (jt.type == JointType::Revolute) a[k++] = revolute_angle(jt, p.rot[j]);
-    }
-    return a;
-  };
+  auto targets = [&](const Pose& p) { return env->action_for(p); };
   CharacterEnv* e = env.get();
   const PolicyFunction follow = [&](const Eigen::VectorXd&) { return targets(walk->sample(e->time() + 1.0 / 30)); };
   const Eigen::VectorXd hold_action = targets(walk->frames[0]);
@@ -100,10 +88,8 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
 }
 
 TEST(Robustness, HeavyCubesFellAStandingHumanoidSoonerThanNone) {
-  std::filesystem::path data;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const auto dir = test::shared_data() / "deepmimic";
-  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "characters/humanoid3d.txt", dir / "characters/humanoid3d_ctrl.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   // No reference: trials start standing in the rest pose, which zero PD targets hold.
   auto frames = [&](double mass) {
     CharacterEnvConfig cfg;
