@@ -241,3 +241,23 @@ TEST(SimCharacter, DogMatchesItsFileAndTrotsOnTheFloor) {
   }
   EXPECT_NEAR(lowest, 0.0, 0.03);
 }
+
+TEST(SimWorld, WritePosePlacesAGhostAsSetStateWouldAndLeavesTheWorldAlone) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const CharacterModel ch = humanoid();
+  const Clip walk = walk_clip(ch);
+  World w(ch);
+  w.set_state(walk.frames[3]);
+  const LinkFrames before = w.link_frames();
+  mjData* ghost = mj_makeData(w.model());
+  w.write_pose(walk.frames[20], ghost);
+  World reference(ch);
+  reference.set_state(walk.frames[20]);
+  const mjData* d = reference.data();
+  for (int b = 0; b < w.model()->nbody * 3; ++b) EXPECT_NEAR(ghost->xpos[b], d->xpos[b], 1e-9);
+  mj_deleteData(ghost);
+  const LinkFrames after = w.link_frames();
+  for (std::size_t j = 0; j < before.joint_pos.size(); ++j) EXPECT_EQ(after.joint_pos[j], before.joint_pos[j]);
+  EXPECT_THROW(w.write_pose(Pose{}, w.data()), Error);
+}

@@ -49,6 +49,28 @@ void World::init(const std::string& mjcf) {
 
 double World::time() const { return d_->time; }
 
+namespace {
+
+// A pose as MuJoCo coordinates in `d` (`qpos` holds each joint's address): set_state's and
+// write_pose's shared half.
+void write_qpos(const Skeleton& sk, const std::vector<int>& qpos, const Pose& pose, mjData* d) {
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int a = qpos[j];
+    const Quat& q = pose.rot[j];
+    switch (sk.joints[j].type) {
+      case JointType::Free:
+        for (int k = 0; k < 3; ++k) d->qpos[a + k] = pose.root_pos[k];
+        d->qpos[a + 3] = q.w(), d->qpos[a + 4] = q.x(), d->qpos[a + 5] = q.y(), d->qpos[a + 6] = q.z();
+        break;
+      case JointType::Spherical: d->qpos[a] = q.w(), d->qpos[a + 1] = q.x(), d->qpos[a + 2] = q.y(), d->qpos[a + 3] = q.z(); break;
+      case JointType::Revolute: d->qpos[a] = revolute_angle(sk.joints[j], q); break;
+      case JointType::Fixed: break;
+    }
+  }
+}
+
+}  // namespace
+
 void World::set_state(const Pose& pose, const PoseVelocity* vel) {
   const Skeleton& sk = ch_.skeleton;
   if (pose.rot.size() != sk.joints.size()) throw Error("set_state: pose has the wrong number of joints");
@@ -56,27 +78,17 @@ void World::set_state(const Pose& pose, const PoseVelocity* vel) {
     throw Error("set_state: velocities have " + std::to_string(vel->joint_ang.size()) + " joints, the character " +
                 std::to_string(sk.joints.size()));
   mj_resetData(m_, d_);
-  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
-    const int a = qpos_[j], v = dof_[j];
-    const Quat& q = pose.rot[j];
+  write_qpos(sk, qpos_, pose, d_);
+  for (std::size_t j = 0; vel && j < sk.joints.size(); ++j) {
+    const int v = dof_[j];
     switch (sk.joints[j].type) {
       case JointType::Free: {
-        for (int k = 0; k < 3; ++k) d_->qpos[a + k] = pose.root_pos[k];
-        d_->qpos[a + 3] = q.w(), d_->qpos[a + 4] = q.x(), d_->qpos[a + 5] = q.y(), d_->qpos[a + 6] = q.z();
-        if (vel) {
-          const Vec3 ang_local = q.conjugate() * vel->root_ang;  // MuJoCo: free-joint spin in the body frame
-          for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->root_lin[k], d_->qvel[v + 3 + k] = ang_local[k];
-        }
+        const Vec3 ang_local = pose.rot[j].conjugate() * vel->root_ang;  // MuJoCo: free-joint spin in the body frame
+        for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->root_lin[k], d_->qvel[v + 3 + k] = ang_local[k];
         break;
       }
-      case JointType::Spherical:
-        d_->qpos[a] = q.w(), d_->qpos[a + 1] = q.x(), d_->qpos[a + 2] = q.y(), d_->qpos[a + 3] = q.z();
-        if (vel) for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->joint_ang[j][k];
-        break;
-      case JointType::Revolute:
-        d_->qpos[a] = revolute_angle(sk.joints[j], q);
-        if (vel) d_->qvel[v] = vel->joint_ang[j].dot(sk.joints[j].axis);
-        break;
+      case JointType::Spherical: for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->joint_ang[j][k]; break;
+      case JointType::Revolute: d_->qvel[v] = vel->joint_ang[j].dot(sk.joints[j].axis); break;
       case JointType::Fixed: break;
     }
   }
@@ -107,23 +119,8 @@ Pose World::pose() const {
 }
 
 void World::write_pose(const Pose& pose, mjData* other) const {
-  const Skeleton& sk = ch_.skeleton;
-  if (pose.rot.size() != sk.joints.size()) throw Error("write_pose: pose has the wrong number of joints");
-  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
-    const int a = qpos_[j];
-    const Quat& q = pose.rot[j];
-    switch (sk.joints[j].type) {
-      case JointType::Free:
-        for (int k = 0; k < 3; ++k) other->qpos[a + k] = pose.root_pos[k];
-        other->qpos[a + 3] = q.w(), other->qpos[a + 4] = q.x(), other->qpos[a + 5] = q.y(), other->qpos[a + 6] = q.z();
-        break;
-      case JointType::Spherical:
-        other->qpos[a] = q.w(), other->qpos[a + 1] = q.x(), other->qpos[a + 2] = q.y(), other->qpos[a + 3] = q.z();
-        break;
-      case JointType::Revolute: other->qpos[a] = revolute_angle(sk.joints[j], q); break;
-      case JointType::Fixed: break;
-    }
-  }
+  if (pose.rot.size() != ch_.skeleton.joints.size()) throw Error("write_pose: pose has the wrong number of joints");
+  write_qpos(ch_.skeleton, qpos_, pose, other);
   mj_kinematics(m_, other);
 }
 
