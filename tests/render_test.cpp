@@ -2,7 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "core/error.hpp"
@@ -108,4 +112,27 @@ TEST(LineChart, LongLegendNamesWidenThePictureNotCutOff) {
   EXPECT_NE(mimic::line_chart_svg(c).find("width='720'"), std::string::npos);
   c.series[0].name = std::string(40, 'x');  // 30 + 7 * 40 = 310 px of legend instead of 150
   EXPECT_NE(mimic::line_chart_svg(c).find("width='880'"), std::string::npos);
+}
+
+TEST(LineChart, WritesPngOfTheChartsSizeAndLeavesNoPartialFiles) {
+  mimic::LineChart c;
+  c.series = {{"a", {0, 1, 2}, {0, 1, 4}}};
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("mimic_chart_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  mimic::write_line_chart(dir / "curve.png", c);
+  std::ifstream in(dir / "curve.png", std::ios::binary);
+  std::string head(24, '\0');
+  in.read(head.data(), 24);
+  ASSERT_EQ(head.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // IHDR's big-endian width and height (bytes 16-23): the SVG's 720 x 420.
+  const auto be32 = [&](std::size_t at) {
+    return (static_cast<unsigned char>(head[at]) << 24) | (static_cast<unsigned char>(head[at + 1]) << 16) |
+           (static_cast<unsigned char>(head[at + 2]) << 8) | static_cast<unsigned char>(head[at + 3]);
+  };
+  EXPECT_EQ(be32(16), 720);
+  EXPECT_EQ(be32(20), 420);
+  mimic::write_line_chart(dir / "curve.svg", c);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 2);
+  EXPECT_THROW(mimic::write_line_chart(dir / "curve.jpg", c), mimic::Error);
+  std::filesystem::remove_all(dir);
 }

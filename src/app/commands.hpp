@@ -13,6 +13,7 @@ void add_render_commands(CLI::App& app);
 void add_train_commands(CLI::App& app);
 void add_imitation_commands(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_report_commands(CLI::App& app);
 
 // Options every command that reads a motion file accepts.
 void add_load_options(CLI::App& cmd, LoadOptions& opts);

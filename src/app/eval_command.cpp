@@ -2,7 +2,7 @@
 // and fall rate; for a character with a reference clip (the env's own, or --clip), the imitation
 // error over one cycle from evenly spaced phases and the normalised return; with --robustness,
 // seed 004's projectile test (frames survived per cube mass); with --latency, the policy's
-// forward-pass time at batch 1. A table on the terminal, and the
+// forward-pass time at batch 1 and, for an adversarial run, its discriminators'. A table on the terminal, and the
 // same figures as JSON with --json.
 #include <spdlog/spdlog.h>
 
@@ -13,10 +13,10 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "core/stopwatch.hpp"
 #include "env/character_env.hpp"
 #include "env/env_factory.hpp"
 #include "learn/imitation_eval.hpp"
+#include "learn/runtime_cost.hpp"
 #include "learn/trainer.hpp"
 
 namespace mimic::app {
@@ -84,21 +84,33 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
 }
 
 // Seed 004 Table 4's runtime cost: one policy forward pass at batch 1 (input normalisation and
-// the mean action included), median of 2,000 after 200 warm-up passes, on this machine's core.
-std::string latency(const Trainer& trainer) {
-  const Eigen::VectorXd input = Eigen::VectorXd::Constant(trainer.input_size(), 0.1);
-  for (int i = 0; i < 200; ++i) (void)trainer.act(input);
-  std::vector<double> us;
-  for (int i = 0; i < 2000; ++i) {
-    const Stopwatch w;
-    (void)trainer.act(input);
-    us.push_back(w.seconds() * 1e6);
+// the mean action included) and, for an adversarial run, one discriminator reward at batch 1;
+// medians of 2,000 passes on this machine's core.
+std::string latency(const EvalArgs& args, const Trainer& trainer) {
+  const RuntimeCost policy = policy_cost(trainer);
+  spdlog::info("  latency         policy forward pass at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", policy.microseconds,
+               policy.parameters, policy.megabytes());
+  std::string json = fmt::format(", \"latency\": {{\"policy_us\": {}, \"policy_parameters\": {}, \"discriminators\": [", policy.microseconds,
+                                 policy.parameters);
+  const std::filesystem::path config = args.run / "config.yaml";
+  const TrainConfig cfg = parse_train_config(read_text_file(config), config.string());
+  const bool adversarial = std::any_of(cfg.rewards.begin(), cfg.rewards.end(), [](const RewardSourceConfig& r) { return r.source != "env"; });
+  if (adversarial) {
+    try {
+      const std::unique_ptr<Trainer> full = Trainer::load_policy(args.run, true);
+      const std::vector<RuntimeCost> costs = discriminator_costs(*full);
+      for (std::size_t i = 0; i < costs.size(); ++i) {
+        const RuntimeCost& c = costs[i];
+        spdlog::info("  latency         {} discriminator reward at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", c.name,
+                     c.microseconds, c.parameters, c.megabytes());
+        json += fmt::format("{}{{\"source\": {}, \"us\": {}, \"parameters\": {}}}", i ? ", " : "", json_string(c.name), c.microseconds,
+                            c.parameters);
+      }
+    } catch (const Error& e) {  // the policy's figures stand; say why the discriminator's are missing
+      spdlog::warn("  latency         discriminator not measured: {}", e.what());
+    }
   }
-  std::nth_element(us.begin(), us.begin() + 1000, us.end());
-  const long long params = trainer.policy_parameters();
-  spdlog::info("  latency         policy forward pass at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", us[1000], params,
-               static_cast<double>(params) * 4 / 1e6);
-  return fmt::format(", \"latency\": {{\"policy_us\": {}, \"policy_parameters\": {}}}", us[1000], params);
+  return json + "]}";
 }
 
 void evaluate(const EvalArgs& args) {
@@ -143,7 +155,7 @@ void evaluate(const EvalArgs& args) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
   if (!args.masses.empty()) json += robustness(args, *trainer);
-  if (args.latency) json += latency(*trainer);
+  if (args.latency) json += latency(args, *trainer);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   mimic::app::add_train_commands(app);
   mimic::app::add_imitation_commands(app);
   mimic::app::add_eval_command(app);
+  mimic::app::add_report_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -10,7 +10,6 @@
 #include "core/file_io.hpp"
 #include "learn/train_bench.hpp"
 #include "learn/trainer.hpp"
-#include "render/line_chart.hpp"
 
 namespace mimic::app {
 
@@ -22,19 +21,6 @@ extern "C" void request_stop(int) { g_stop.store(true); }
 std::string cell(const IterationMetrics& m, const char* name, const char* format) {
   const double v = m.get(name);
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string("-");
-}
-
-// Moving average over the last `window` finite values (NaN where none).
-std::vector<double> smooth(const std::vector<double>& v, int window) {
-  std::vector<double> out(v.size(), std::nan(""));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    double sum = 0;
-    int n = 0;
-    for (std::size_t j = i + 1 > static_cast<std::size_t>(window) ? i + 1 - static_cast<std::size_t>(window) : 0; j <= i; ++j)
-      if (std::isfinite(v[j])) sum += v[j], ++n;
-    if (n > 0) out[i] = sum / n;
-  }
-  return out;
 }
 
 }  // namespace
@@ -80,46 +66,6 @@ void add_train_commands(CLI::App& app) {
     trainer.run();
     spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stop.load() ? "stopped" : "done", trainer.iteration(),
                  trainer.samples(), (opts.run_dir / "checkpoint.pt").string());
-  });
-
-  struct PlotArgs {
-    std::vector<std::filesystem::path> runs;
-    std::vector<std::string> names;
-    std::filesystem::path out;
-    std::string x = "samples", y = "return", title;
-    int smooth = 1;
-  };
-  auto plot_args = std::make_shared<PlotArgs>();
-  CLI::App* plot = app.add_subcommand("plot", "learning curves of training runs (metrics.csv) as an SVG chart");
-  plot->add_option("runs", plot_args->runs, "run directories (or metrics.csv files)")->required()->check(CLI::ExistingPath);
-  plot->add_option("-o,--output", plot_args->out, "output .svg")->required();
-  plot->add_option("--x", plot_args->x, "column on the x axis")->capture_default_str();
-  plot->add_option("--y", plot_args->y, "column on the y axis")->capture_default_str();
-  plot->add_option("--smooth", plot_args->smooth, "moving average over this many iterations")->capture_default_str()->check(CLI::PositiveNumber);
-  plot->add_option("--names", plot_args->names, "legend names, one per run (default: the run directories' names)");
-  plot->add_option("--title", plot_args->title, "chart title");
-  plot->callback([plot_args] {
-    const PlotArgs& a = *plot_args;
-    if (!a.names.empty() && a.names.size() != a.runs.size()) throw Error("--names: give one name per run");
-    LineChart chart;
-    chart.x_label = a.x;
-    chart.y_label = a.y + (a.smooth > 1 ? fmt::format(" (mean of {} iterations)", a.smooth) : "");
-    chart.title = a.title.empty() ? a.y + " vs " + a.x : a.title;
-    for (std::size_t i = 0; i < a.runs.size(); ++i) {
-      const std::filesystem::path csv = std::filesystem::is_directory(a.runs[i]) ? a.runs[i] / "metrics.csv" : a.runs[i];
-      const MetricsTable t = read_metrics_csv(csv);
-      ChartSeries s;
-      s.name = a.names.empty() ? (std::filesystem::is_directory(a.runs[i]) ? a.runs[i].filename().string() : csv.stem().string()) : a.names[i];
-      try {
-        s.x = t.column(a.x);
-        s.y = smooth(t.column(a.y), a.smooth);
-      } catch (const Error& e) {
-        throw Error(csv.string() + ": " + e.what());
-      }
-      chart.series.push_back(std::move(s));
-    }
-    write_file_atomic(a.out, line_chart_svg(chart));
-    spdlog::info("wrote {} ({} run(s), {} vs {})", a.out.string(), a.runs.size(), a.y, a.x);
   });
 
   CLI::App* bench = app.add_subcommand("bench", "throughput figures");

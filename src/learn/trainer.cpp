@@ -264,12 +264,13 @@ const TrainConfig& Trainer::config() const { return impl_->cfg; }
 void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(*impl_, path); }
 void Trainer::load_checkpoint(const std::filesystem::path& path) { read_checkpoint(*impl_, path); }
 
-std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run) {
+std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources) {
   const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
   if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))
     throw Error(run.string() + ": not a training run (needs config.yaml and checkpoint.pt)");
-  // Reward sources' saved state is skipped: the env source loads nothing.
-  const std::string text = override_config(read_text_file(config), config.string(), {"rewards=[{source: env}]"});
+  // Without reward sources their saved state is skipped: the env source loads nothing.
+  const std::string raw = read_text_file(config);
+  const std::string text = reward_sources ? raw : override_config(raw, config.string(), {"rewards=[{source: env}]"});
   auto trainer = std::make_unique<Trainer>(parse_train_config(text, config.string()));
   trainer->load_checkpoint(checkpoint);
   return trainer;

@@ -73,8 +73,9 @@ class Trainer {
 
   // A trained policy from a run directory (config.yaml + checkpoint.pt), for acting only
   // (evaluation, videos, recording): its reward sources are left out, so that a run whose
-  // discriminator read expert files elsewhere still loads. Error naming the run otherwise.
-  static std::unique_ptr<Trainer> load_policy(const std::filesystem::path& run);
+  // discriminator read expert files elsewhere still loads; with `reward_sources` they are built
+  // and restored too (their expert files must be found). Error naming the run otherwise.
+  static std::unique_ptr<Trainer> load_policy(const std::filesystem::path& run, bool reward_sources = false);
 
   struct Impl;
   Impl& impl() { return *impl_; }  // for tests and benchmarks that reach the networks

@@ -6,7 +6,12 @@
 #include <cmath>
 #include <limits>
 
+#include <unistd.h>
+
+#include <cstdlib>
+
 #include "core/error.hpp"
+#include "core/file_io.hpp"
 #include "render/clip_svg.hpp"
 
 namespace mimic {
@@ -98,6 +103,39 @@ std::string line_chart_svg(const LineChart& c) {
   }
   svg += "</svg>\n";
   return svg;
+}
+
+namespace {
+
+std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+void write_line_chart(const std::filesystem::path& out, const LineChart& chart) {
+  const std::string ext = out.extension().string();
+  if (ext != ".svg" && ext != ".png") throw Error(out.string() + ": a chart is written as .svg or .png");
+  const std::string svg = line_chart_svg(chart);
+  if (ext == ".svg") return write_file_atomic(out, svg);
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+  std::filesystem::path source = out, partial = out;
+  source += ".partial" + std::to_string(::getpid()) + ".svg";
+  partial += ".partial" + std::to_string(::getpid()) + ".png";
+  write_file_atomic(source, svg);
+  const std::string cmd = fmt::format("ffmpeg -loglevel error -y -i {} -frames:v 1 -c:v png -f image2 {}", shell_quoted(source.string()),
+                                      shell_quoted(partial.string()));
+  const int status = std::system(cmd.c_str());
+  std::error_code ec;
+  std::filesystem::remove(source, ec);
+  if (status != 0 || !std::filesystem::exists(partial)) {
+    std::filesystem::remove(partial, ec);
+    throw Error(out.string() + ": ffmpeg could not rasterise the chart (exit status " + std::to_string(status) +
+                "; it needs ffmpeg with librsvg, installed by scripts/setup.sh)");
+  }
+  std::filesystem::rename(partial, out);
 }
 
 }  // namespace mimic

@@ -1,6 +1,7 @@
 #pragma once
 // Line charts as SVG (learning curves, robustness curves): series of (x, y) points on shared
 // axes with round-number ticks and a legend. Points with a non-finite y are gaps.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct LineChart {
 
 // The SVG text; Error when there is nothing finite to draw or x and y sizes differ.
 std::string line_chart_svg(const LineChart& chart);
+// The chart to `out`: .svg as written by line_chart_svg, .png rasterised from it by ffmpeg's SVG
+// decoder (librsvg). Atomic: a failure leaves no partial file. Error naming the file otherwise.
+void write_line_chart(const std::filesystem::path& out, const LineChart& chart);
 // "Nice" tick values covering [lo, hi] (1, 2 or 5 times a power of ten apart), about `count`.
 std::vector<double> chart_ticks(double lo, double hi, int count = 5);
 

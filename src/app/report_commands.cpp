@@ -1,0 +1,187 @@
+// mimic plot (learning curves from metrics.csv, robustness curves from `mimic eval --json`
+// files; .svg or .png) and mimic table (a Markdown table of `mimic eval --json` files, with the
+// training budget behind each): the figures of the docs, made by commands.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/yaml_reader.hpp"
+#include "learn/run_log.hpp"
+#include "render/line_chart.hpp"
+
+namespace mimic::app {
+
+namespace {
+
+// Moving average over the last `window` finite values (NaN where none).
+std::vector<double> smooth(const std::vector<double>& v, int window) {
+  std::vector<double> out(v.size(), std::nan(""));
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    double sum = 0;
+    int n = 0;
+    for (std::size_t j = i + 1 > static_cast<std::size_t>(window) ? i + 1 - static_cast<std::size_t>(window) : 0; j <= i; ++j)
+      if (std::isfinite(v[j])) sum += v[j], ++n;
+    if (n > 0) out[i] = sum / n;
+  }
+  return out;
+}
+
+// The figures of one `mimic eval --json` file that the reports use (NaN where absent or null).
+struct EvalSummary {
+  std::string run, clip;
+  double error_mean = NAN, error_std = NAN, normalised_return = NAN, episode_length = NAN, return_mean = NAN;
+  long falls = -1, trials = 0;
+  std::vector<double> masses, frames;  // robustness
+};
+
+double number_or_nan(const YamlReader& r, const YAML::Node& map, const char* key, const std::string& where) {
+  const YAML::Node n = map[key];
+  if (!n || n.IsNull()) return NAN;
+  return r.number(n, where + " \"" + key + "\"");
+}
+
+EvalSummary read_eval_json(const std::filesystem::path& path) {
+  const YamlReader r(path.string(), '"');
+  const YAML::Node root = r.parse(read_text_file(path), path.string() + ": not an evaluation file (JSON from mimic eval --json)");
+  if (!root.IsMap()) throw Error(path.string() + ": not an evaluation file (JSON from mimic eval --json)");
+  EvalSummary s;
+  s.run = r.text(r.member(root, "run", "the evaluation"), "\"run\"");
+  s.return_mean = number_or_nan(r, root, "return_mean", "the evaluation");
+  s.episode_length = number_or_nan(r, root, "episode_length", "the evaluation");
+  if (const YAML::Node im = root["imitation"]) {
+    s.clip = r.text(r.member(im, "clip", "\"imitation\""), "\"imitation\" \"clip\"");
+    s.error_mean = number_or_nan(r, im, "error_mean", "\"imitation\"");
+    s.error_std = number_or_nan(r, im, "error_std", "\"imitation\"");
+    s.normalised_return = number_or_nan(r, im, "normalised_return", "\"imitation\"");
+    s.falls = r.integer(r.member(im, "falls", "\"imitation\""), "\"imitation\" \"falls\"");
+    s.trials = r.integer(r.member(im, "trials", "\"imitation\""), "\"imitation\" \"trials\"");
+  }
+  if (const YAML::Node rob = root["robustness"]) {
+    if (!rob.IsSequence()) r.fail(rob, "\"robustness\": expected a list");
+    for (const YAML::Node& p : rob) {
+      s.masses.push_back(r.number(r.member(p, "mass", "a robustness point"), "\"mass\""));
+      s.frames.push_back(r.number(r.member(p, "frames_mean", "a robustness point"), "\"frames_mean\""));
+    }
+  }
+  return s;
+}
+
+std::string cell(double v, const char* format) { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string("-"); }
+
+// Samples and wall time behind a run: the last row of its metrics.csv ("-" where it is gone).
+std::pair<std::string, std::string> budget_of(const std::filesystem::path& run) {
+  const std::filesystem::path csv = run / "metrics.csv";
+  if (!std::filesystem::exists(csv)) return {"-", "-"};
+  const MetricsTable t = read_metrics_csv(csv);
+  if (t.rows.empty()) return {"-", "-"};
+  const std::vector<double> samples = t.column("samples"), wall = t.column("wall_s");
+  return {cell(samples.back() / 1e6, "{:.2f} M"), cell(wall.back() / 60.0, "{:.0f} min")};
+}
+
+struct PlotArgs {
+  std::vector<std::filesystem::path> inputs;
+  std::vector<std::string> names;
+  std::filesystem::path out;
+  std::string x = "samples", y = "return", title;
+  int smooth = 1;
+};
+
+std::string name_of(const PlotArgs& a, std::size_t i, const std::filesystem::path& file) {
+  if (!a.names.empty()) return a.names[i];
+  return std::filesystem::is_directory(a.inputs[i]) ? a.inputs[i].filename().string() : file.stem().string();
+}
+
+LineChart learning_chart(const PlotArgs& a) {
+  LineChart chart;
+  chart.x_label = a.x;
+  chart.y_label = a.y + (a.smooth > 1 ? fmt::format(" (mean of {} iterations)", a.smooth) : "");
+  chart.title = a.title.empty() ? a.y + " vs " + a.x : a.title;
+  for (std::size_t i = 0; i < a.inputs.size(); ++i) {
+    const std::filesystem::path csv = std::filesystem::is_directory(a.inputs[i]) ? a.inputs[i] / "metrics.csv" : a.inputs[i];
+    const MetricsTable t = read_metrics_csv(csv);
+    ChartSeries s;
+    s.name = name_of(a, i, csv);
+    try {
+      s.x = t.column(a.x);
+      s.y = smooth(t.column(a.y), a.smooth);
+    } catch (const Error& e) {
+      throw Error(csv.string() + ": " + e.what());
+    }
+    chart.series.push_back(std::move(s));
+  }
+  return chart;
+}
+
+// Seed 004 Fig. 7: frames survived against projectile mass, one line per evaluation.
+LineChart robustness_chart(const PlotArgs& a) {
+  LineChart chart;
+  chart.x_label = "projectile mass (kg)";
+  chart.y_label = "frames survived (mean of trials)";
+  chart.title = a.title.empty() ? "Robustness to projectiles" : a.title;
+  for (std::size_t i = 0; i < a.inputs.size(); ++i) {
+    const EvalSummary e = read_eval_json(a.inputs[i]);
+    if (e.masses.empty()) throw Error(a.inputs[i].string() + ": no robustness figures (evaluate with mimic eval --robustness)");
+    chart.series.push_back({name_of(a, i, a.inputs[i]), e.masses, e.frames});
+  }
+  return chart;
+}
+
+}  // namespace
+
+void add_report_commands(CLI::App& app) {
+  auto plot_args = std::make_shared<PlotArgs>();
+  CLI::App* plot = app.add_subcommand("plot", "learning curves (runs' metrics.csv) or robustness curves (mimic eval --json files) as .svg or .png");
+  plot->add_option("inputs", plot_args->inputs, "run directories or metrics.csv files; or evaluation .json files")
+      ->required()
+      ->check(CLI::ExistingPath);
+  plot->add_option("-o,--output", plot_args->out, "output .svg or .png")->required();
+  plot->add_option("--x", plot_args->x, "column on the x axis (learning curves)")->capture_default_str();
+  plot->add_option("--y", plot_args->y, "column on the y axis (learning curves)")->capture_default_str();
+  plot->add_option("--smooth", plot_args->smooth, "moving average over this many iterations")->capture_default_str()->check(CLI::PositiveNumber);
+  plot->add_option("--names", plot_args->names, "legend names, one per input (default: the directories' or files' names)");
+  plot->add_option("--title", plot_args->title, "chart title");
+  plot->callback([plot_args] {
+    const PlotArgs& a = *plot_args;
+    if (!a.names.empty() && a.names.size() != a.inputs.size()) throw Error("--names: give one name per input");
+    const auto is_json = [](const std::filesystem::path& p) { return p.extension() == ".json"; };
+    const std::size_t json = static_cast<std::size_t>(std::count_if(a.inputs.begin(), a.inputs.end(), is_json));
+    if (json != 0 && json != a.inputs.size()) throw Error("plot: give either runs (learning curves) or evaluation .json files (robustness), not both");
+    const LineChart chart = json ? robustness_chart(a) : learning_chart(a);
+    write_line_chart(a.out, chart);
+    spdlog::info("wrote {} ({} input(s), {})", a.out.string(), a.inputs.size(), json ? "robustness" : a.y + " vs " + a.x);
+  });
+
+  struct TableArgs {
+    std::vector<std::filesystem::path> inputs;
+    std::vector<std::string> names;
+    std::filesystem::path out;
+  };
+  auto table_args = std::make_shared<TableArgs>();
+  CLI::App* table = app.add_subcommand("table", "a Markdown table of evaluations (mimic eval --json files) with each run's training budget");
+  table->add_option("inputs", table_args->inputs, "evaluation .json files")->required()->check(CLI::ExistingFile);
+  table->add_option("--names", table_args->names, "row names, one per file (default: the runs' directories)");
+  table->add_option("-o,--output", table_args->out, "also write the table to this file");
+  table->callback([table_args] {
+    const TableArgs& a = *table_args;
+    if (!a.names.empty() && a.names.size() != a.inputs.size()) throw Error("--names: give one name per file");
+    std::string text =
+        "| run | clip | samples | wall | imitation error (m) | normalised return | falls | episode length |\n"
+        "|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < a.inputs.size(); ++i) {
+      const EvalSummary e = read_eval_json(a.inputs[i]);
+      const auto [samples, wall] = budget_of(e.run);
+      const std::string error = std::isfinite(e.error_mean) ? fmt::format("{:.3f} ± {:.3f}", e.error_mean, e.error_std) : "-";
+      const std::string falls = e.falls >= 0 ? fmt::format("{} / {}", e.falls, e.trials) : "-";
+      text += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} |\n", a.names.empty() ? e.run : a.names[i], e.clip.empty() ? "-" : e.clip,
+                          samples, wall, error, cell(e.normalised_return, "{:.3f}"), falls, cell(e.episode_length, "{:.0f}"));
+    }
+    fmt::print("{}", text);
+    if (!a.out.empty()) write_file_atomic(a.out, text);
+  });
+}
+
+}  // namespace mimic::app
