@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/math.hpp"
+#include "core/statistics.hpp"
 #include "core/text_scanner.hpp"
 #include "core/error.hpp"
 
@@ -59,4 +60,13 @@ TEST(TextScanner, RejectsNonFiniteAndPartialNumbers) {
   EXPECT_FALSE(parse_double("1e999", v));
   EXPECT_TRUE(parse_double("+2.5", v));
   EXPECT_EQ(v, 2.5);
+}
+
+TEST(Statistics, MeanAndPopulationStdOfASample) {
+  EXPECT_DOUBLE_EQ(mimic::mean_of({1, 2, 3, 4}), 2.5);
+  // deviations -1.5, -0.5, 0.5, 1.5: squares sum to 5, over 4 samples
+  EXPECT_DOUBLE_EQ(mimic::std_of({1, 2, 3, 4}), std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(mimic::std_of({7}), 0.0);
+  EXPECT_TRUE(std::isnan(mimic::mean_of({})));
+  EXPECT_TRUE(std::isnan(mimic::std_of({})));
 }

@@ -12,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "env/character_env.hpp"
 #include "env/env_factory.hpp"
@@ -34,14 +35,6 @@ std::string json_string(const std::string& s) {
 
 // JSON has no NaN: unknown figures are null.
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
-
-double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
-double stddev(const std::vector<double>& v) {
-  const double m = mean(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return std::sqrt(s / static_cast<double>(v.size()));
-}
 
 struct EvalArgs {
   std::filesystem::path run, json, clip, character;
@@ -121,11 +114,11 @@ void evaluate(const EvalArgs& args) {
   const char* actions = args.stochastic ? "sampled" : "mean";
   spdlog::info("{}", args.run.string());
   spdlog::info("  episodes        {} ({} actions): return {:.2f} +- {:.2f}, length {:.1f} steps, fall rate {:.2f}", s.returns.size(),
-               actions, mean(s.returns), stddev(s.returns), mean(lengths), fall_rate);
+               actions, mean_of(s.returns), std_of(s.returns), mean_of(lengths), fall_rate);
   std::string json = fmt::format("{{\"run\": {}, \"episodes\": {}, \"actions\": \"{}\", \"return_mean\": {}, \"return_std\": {}, "
                                  "\"episode_length\": {}, \"fall_rate\": {}",
-                                 json_string(args.run.string()), s.returns.size(), actions, mean(s.returns), stddev(s.returns),
-                                 mean(lengths), fall_rate);
+                                 json_string(args.run.string()), s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
+                                 mean_of(lengths), fall_rate);
 
   // Imitation: a character environment and a clip to compare with.
   const std::unique_ptr<Env> env = trainer->make_env();

@@ -8,6 +8,7 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "env/env_factory.hpp"
 #include "learn/clip_demonstrations.hpp"
@@ -15,12 +16,6 @@
 #include "motion/clip_io.hpp"
 
 namespace mimic::app {
-
-namespace {
-
-double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
-
-}  // namespace
 
 void add_imitation_commands(CLI::App& app) {
   struct Args {
@@ -42,7 +37,7 @@ void add_imitation_commands(CLI::App& app) {
     const Demonstrations d = Trainer::load_policy(args->run)->record(args->episodes, args->every, args->deterministic, args->seed, &returns);
     write_demonstrations(args->out, d);
     spdlog::info("wrote {}: {} samples from {} episodes (every {} steps), mean episode return {:.1f}", args->out.string(), d.size(),
-                 d.episodes(), args->every, mean(returns));
+                 d.episodes(), args->every, mean_of(returns));
   });
 
   struct ClipArgs {

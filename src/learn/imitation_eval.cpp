@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 #include "learn/frame_history.hpp"
 
 namespace mimic {
@@ -26,22 +27,6 @@ double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<Li
   return sum / static_cast<double>(sim.size());
 }
 
-namespace {
-
-double mean_of(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
-}
-
-double std_of(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const double m = mean_of(v);
-  double ss = 0;
-  for (double e : v) ss += (e - m) * (e - m);
-  return std::sqrt(ss / static_cast<double>(v.size()));
-}
-
-}  // namespace
 
 double ImitationReport::error_mean() const { return mean_of(trial_errors); }
 double ImitationReport::error_std() const { return std_of(trial_errors); }

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
 #include "learn/advantage.hpp"
@@ -22,10 +23,6 @@ void single_threaded_math() {
   at::set_num_threads(1);
   using SetThreads = void (*)(int);
   if (auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
-}
-
-double mean_of(const std::vector<double>& v) {
-  return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 
 }  // namespace
