@@ -138,12 +138,13 @@ void evaluate(const EvalArgs& args) {
     spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions)",
                  r.trial_errors.size(), name, r.cycle_seconds);
     spdlog::info("  error           {:.3f} +- {:.3f} m (mean over links of the world position error)", r.error_mean(), r.error_std());
-    spdlog::info("  falls           {} of {} full episodes", r.falls, r.trial_errors.size());
+    spdlog::info("  falls           {} of {} full episodes; down (a fall, or the root below half the reference's for {} frames) {}", r.falls,
+                 r.trial_errors.size(), kLyingFrames, r.down);
     if (!r.trial_returns.empty()) spdlog::info("  normalised return {:.3f} (full episodes; 1 = perfect tracking)", r.normalised_return_mean());
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
-                        "\"falls\": {}, \"normalised_return\": {}}}",
+                        "\"falls\": {}, \"down\": {}, \"normalised_return\": {}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
-                        json_number(r.error_std()), r.falls, json_number(r.normalised_return_mean()));
+                        json_number(r.error_std()), r.falls, r.down, json_number(r.normalised_return_mean()));
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }

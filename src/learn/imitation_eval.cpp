@@ -62,6 +62,8 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     ref_frames.clear();
     double ret = 0;
     bool over = false, fell = false;
+    bool lay = false;
+    int low = 0;  // consecutive frames with the root below half the reference's
     for (int t = 1; t <= std::max(error_steps, episode_steps); ++t) {
       if (over && t > error_steps) break;
       const StepResult r = env.step(act(frames.stacked()));
@@ -74,10 +76,14 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
         ret += r.reward();
         fell |= is_failure(r.termination);
         over = r.done();
+        const double ref_root = clip->sample(env.time()).root_pos.z();
+        low = env.world().pose().root_pos.z() < 0.5 * ref_root ? low + 1 : 0;
+        lay |= low >= kLyingFrames;
       }
     }
     report.trial_errors.push_back(trajectory_error(sim_frames, ref_frames));
     if (fell) ++report.falls;
+    if (fell || lay) ++report.down;
     if (max_step > 0) report.trial_returns.push_back(ret / (episode_steps * max_step));
   }
   return report;

@@ -22,10 +22,17 @@ double link_position_error(const LinkFrames& sim, const LinkFrames& ref);
 // Mean of link_position_error over the frames of two trajectories of equal length.
 double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<LinkFrames>& ref);
 
+// Consecutive frames a character must lie for to count as down (DESIGN.md section 5's robustness rule).
+constexpr int kLyingFrames = 10;
+
 struct ImitationReport {
   std::vector<double> trial_errors;   // per trial: the error averaged over its cycle
   std::vector<double> trial_returns;  // per trial: normalised return (empty when not known)
-  int falls = 0;                      // trials whose character fell within the full episode
+  int falls = 0;                      // trials whose episode ended in a fall (the env's termination rule)
+  // Trials whose character lay on the ground in the full episode: a fall, or its root below half
+  // the reference's root height for `kLyingFrames` consecutive frames. Catches a policy that lies
+  // on its limbs with the torso off the ground, which a torso-contact rule does not end.
+  int down = 0;
   double cycle_seconds = 0.0;
   double error_mean() const;
   double error_std() const;
@@ -52,6 +59,6 @@ struct RobustnessReport {
   double std() const;
 };
 RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act, int history, int trials, int max_frames,
-                                    int lying_frames = 10, std::uint64_t seed = 1);
+                                    int lying_frames = kLyingFrames, std::uint64_t seed = 1);
 
 }  // namespace mimic

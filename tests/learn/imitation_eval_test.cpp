@@ -87,6 +87,40 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
   EXPECT_THROW(measure_imitation(*env, hold, 1, 0), Error);
 }
 
+// Without early termination a collapsing character ends no episode, so it never counts as a
+// fall; lying with its root below half the reference's for 10 frames counts as down.
+TEST(ImitationError, ACollapseWithoutATerminationCountsAsDownNotAsAFall) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  TrackingConfig cfg;
+  cfg.max_seconds = 3.0;
+  cfg.early_termination = false;
+  auto env = make_tracking_env(ch, walk, cfg);
+  CharacterEnv* e = env.get();
+  const PolicyFunction follow = [&](const Eigen::VectorXd&) { return e->action_for(walk->sample(e->time() + 1.0 / 30)); };
+  // Knees driven to their limits of bending and hips folded: the character crumples.
+  Pose folded = walk->frames[0];
+  for (std::size_t j = 0; j < ch.skeleton.joints.size(); ++j) {
+    const Joint& joint = ch.skeleton.joints[j];
+    if (joint.type != JointType::Revolute || joint.limits.empty()) continue;
+    const auto [lo, hi] = joint.limits[0];
+    folded.rot[j] = Quat(Eigen::AngleAxisd(std::abs(lo) > std::abs(hi) ? lo : hi, joint.axis));
+  }
+  const Eigen::VectorXd fold_action = env->action_for(folded);
+  const PolicyFunction fold = [&](const Eigen::VectorXd&) { return fold_action; };
+  const ImitationReport bad = measure_imitation(*env, fold, 1, 3);
+  // Open-loop PD following stays up for about a second before it topples: a 0.6 s episode.
+  cfg.max_seconds = 0.6;
+  env = make_tracking_env(ch, walk, cfg);
+  e = env.get();
+  const ImitationReport good = measure_imitation(*env, follow, 1, 3);
+  EXPECT_EQ(good.falls, 0);
+  EXPECT_EQ(good.down, 0);
+  EXPECT_EQ(bad.falls, 0);  // nothing ends its episodes
+  EXPECT_EQ(bad.down, 3);
+}
+
 TEST(Robustness, HeavyCubesFellAStandingHumanoidSoonerThanNone) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
