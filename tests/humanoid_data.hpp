@@ -1,5 +1,6 @@
 #pragma once
 // DeepMimic's humanoid and its clips from the shared data, for tests that skip without it.
+#include <cmath>
 #include <memory>
 
 #include "motion/deepmimic.hpp"
@@ -15,6 +16,18 @@ inline CharacterModel humanoid3d() {
 
 inline std::shared_ptr<const Clip> humanoid3d_motion(const CharacterModel& ch, const char* name) {
   return std::make_shared<const Clip>(load_deepmimic_motion(shared_data() / "deepmimic/motions" / name, ch.skeleton));
+}
+
+// `pose` with every revolute joint (knees, elbows) at the end of its range farther from zero:
+// held as PD targets, the humanoid crumples onto its folded legs.
+inline Pose folded(const CharacterModel& ch, Pose pose) {
+  for (std::size_t j = 0; j < ch.skeleton.joints.size(); ++j) {
+    const Joint& joint = ch.skeleton.joints[j];
+    if (joint.type != JointType::Revolute || joint.limits.empty()) continue;
+    const auto [lo, hi] = joint.limits[0];
+    pose.rot[j] = Quat(Eigen::AngleAxisd(std::abs(lo) > std::abs(hi) ? lo : hi, joint.axis));
+  }
+  return pose;
 }
 
 }  // namespace mimic::test

@@ -181,6 +181,36 @@ TEST(TrackingEnv, StartsFixedOrAnywhereOnTheClipAndEndsAsTheClipSays) {
   EXPECT_NEAR(steps, std::ceil(kick->duration() * 30 - 1e-6), 1);
 }
 
+// A crumpling character sinks below half the reference's root height before its torso touches
+// the ground: the height rule ends the episode sooner, as a fall, with the torso still up.
+TEST(TrackingEnv, SinkingBelowHalfTheReferencesRootHeightIsAFall) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  auto run = [&](double fall_height) {
+    TrackingConfig cfg;
+    cfg.init = TrackingConfig::Init::Fixed;
+    cfg.max_seconds = 3.0;
+    cfg.fall_height = fall_height;
+    auto env = make_tracking_env(ch, walk, cfg);
+    std::mt19937_64 rng(1);
+    env->reset(rng);
+    const Eigen::VectorXd fold = env->action_for(test::folded(ch, walk->frames[0]));
+    StepResult r;
+    int steps = 0;
+    do r = env->step(fold), ++steps;
+    while (!r.done());
+    EXPECT_EQ(r.termination, Termination::Fall);
+    return std::tuple(steps, env->fall_contact(), env->world().pose().root_pos.z());
+  };
+  const auto [by_height, torso_down, height] = run(0.5);
+  EXPECT_FALSE(torso_down);
+  EXPECT_LT(height, 0.5 * walk->frames[0].root_pos.z() + 0.05);
+  const auto [by_contact, torso_down_too, unused] = run(0.0);
+  EXPECT_TRUE(torso_down_too);
+  EXPECT_LT(by_height, by_contact);
+}
+
 TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {
   MIMIC_NEED_HUMANOID();
   const YamlReader reader("test.yaml");
@@ -213,4 +243,5 @@ TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {
   EXPECT_NE(message("{name: tracking, clip: deepmimic/motions/dog3d_trot.txt}").find("dog3d_trot.txt:"), std::string::npos);
   EXPECT_NE(message("{name: tracking, wieghts: {pose: 1}}").find("wieghts"), std::string::npos);
   EXPECT_NE(message("{name: tracking, scales: {com: -1}}").find("scales.com"), std::string::npos);
+  EXPECT_NE(message("{name: tracking, fall_height: 2}").find("fall_height"), std::string::npos);
 }

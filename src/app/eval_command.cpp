@@ -58,7 +58,7 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   for (std::size_t i = 0; i < args.masses.size(); ++i) {
     const double mass = args.masses[i];
     const std::string text = override_config(read_text_file(config), config.string(),
-                                             {fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass),
+                                             {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
                                               fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0), "rewards=[{source: env}]"});
     const TrainConfig cfg = parse_train_config(text, config.string());
     const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
@@ -69,7 +69,7 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
                   std::to_string(character->config().sim.control_hz) + " Hz");
     const PolicyFunction act = [&](const Eigen::VectorXd& input) { return trainer.act(input); };
     const RobustnessReport r = measure_robustness(*character, act, trainer.config().policy.net.history, args.robustness_trials, max_frames);
-    spdlog::info("    {:6.2f} kg     {:.1f} +- {:.1f} frames survived", mass, r.mean(), r.std());
+    spdlog::info("    {}     {:.1f} +- {:.1f} frames survived", mass > 0 ? fmt::format("{:6.2f} kg", mass) : std::string("no cubes "), r.mean(), r.std());
     json += fmt::format("{}{{\"mass\": {}, \"frames_mean\": {}, \"frames_std\": {}, \"trials\": {}, \"max_frames\": {}}}", i ? ", " : "", mass,
                         r.mean(), r.std(), r.frames.size(), max_frames);
   }
@@ -165,9 +165,9 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   ev->add_option("--clip", args->clip, "reference clip for the imitation error (default: the environment's own)")->check(CLI::ExistingFile);
   ev->add_option("--character", args->character, "DeepMimic character file of a .txt --clip (default: found by its name)");
-  ev->add_option("--robustness", args->masses, "projectile masses (kg) for seed 004's robustness test, e.g. 1,5,10,20")
+  ev->add_option("--robustness", args->masses, "projectile masses (kg) for seed 004's robustness test, e.g. 0,1,5,10,20 (0: no cubes, the control)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::NonNegativeNumber);
   ev->add_option("--robustness-trials", args->robustness_trials, "trials per mass (seed 004: 1,000)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

@@ -156,8 +156,13 @@ bool CharacterEnv::fall_contact() const {
   return false;
 }
 
+bool CharacterEnv::below_reference() const {
+  if (!reference_ || !(cfg_.fall_height > 0)) return false;
+  return world_.pose().root_pos.z() < cfg_.fall_height * reference_->sample(time_).root_pos.z();
+}
+
 Termination CharacterEnv::check_termination() const {
-  if (cfg_.early_termination && fall_contact()) return Termination::Fall;
+  if (cfg_.early_termination && (fall_contact() || below_reference())) return Termination::Fall;
   if (reference_ && reference_->loop != LoopMode::Wrap && time_ >= reference_->duration() - 1e-9) return Termination::ClipEnd;
   if (elapsed_ >= cfg_.max_seconds - 1e-9) return Termination::TimeLimit;
   return Termination::None;

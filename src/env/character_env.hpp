@@ -25,6 +25,10 @@ struct CharacterEnvConfig {
   // (DeepMimic's EnableFallContact). early_termination = false turns falls off (contact-rich clips).
   std::vector<std::string> fall_links;
   bool early_termination = true;
+  // > 0: also a fall when the root is below this fraction of the reference's root height at the
+  // current clip time, e.g. sitting on the thighs with the torso off the ground, which no torso
+  // contact catches and which a tracking policy otherwise learns to settle into. Needs a reference.
+  double fall_height = 0.0;
   double max_seconds = 20.0;  // TimeLimit
   TerrainSpec terrain;             // flat by default; every kind starts flat around the origin
   std::vector<PushSpec> pushes;    // times from each episode's start
@@ -78,6 +82,8 @@ class CharacterEnv : public Env {
   // Does a body whose contact counts as a fall touch the ground now (whether or not that ends
   // episodes)? The robustness test counts frames lying on the ground.
   bool fall_contact() const;
+  // The root below fall_height times the reference's root height (false without either).
+  bool below_reference() const;
   // The projectile launcher (null unless config().projectiles.enabled); its stats are per episode.
   const ProjectileLauncher* projectiles() const { return launcher_.get(); }
   ProjectileLauncher* projectiles() { return launcher_.get(); }

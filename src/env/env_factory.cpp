@@ -100,6 +100,7 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
   c.early_termination = s.boolean("early_termination", c.early_termination);
   c.fall_links = s.texts("fall_links", c.fall_links);
+  c.fall_height = s.number("fall_height", c.fall_height, 0, 1);
   c.observations.names = s.texts("observations", c.observations.names);
   c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
   c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);

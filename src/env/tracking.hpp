@@ -66,6 +66,7 @@ struct TrackingConfig {
   TrackingScales scales;
   double max_seconds = 20.0;       // cyclic clips; a non-cyclic clip ends at its end
   bool early_termination = true;   // off for contact-rich clips (roll, get-up)
+  double fall_height = 0.5;        // a fall also below this fraction of the reference's root height (0: off)
   std::vector<std::string> fall_links;  // empty: the character's own choice
   ObservationConfig observations{.names = {"full_state", "phase"}};
   SimConfig sim;

@@ -96,18 +96,11 @@ TEST(ImitationError, ACollapseWithoutATerminationCountsAsDownNotAsAFall) {
   TrackingConfig cfg;
   cfg.max_seconds = 3.0;
   cfg.early_termination = false;
+  cfg.fall_height = 0;
   auto env = make_tracking_env(ch, walk, cfg);
   CharacterEnv* e = env.get();
   const PolicyFunction follow = [&](const Eigen::VectorXd&) { return e->action_for(walk->sample(e->time() + 1.0 / 30)); };
-  // Knees driven to their limits of bending and hips folded: the character crumples.
-  Pose folded = walk->frames[0];
-  for (std::size_t j = 0; j < ch.skeleton.joints.size(); ++j) {
-    const Joint& joint = ch.skeleton.joints[j];
-    if (joint.type != JointType::Revolute || joint.limits.empty()) continue;
-    const auto [lo, hi] = joint.limits[0];
-    folded.rot[j] = Quat(Eigen::AngleAxisd(std::abs(lo) > std::abs(hi) ? lo : hi, joint.axis));
-  }
-  const Eigen::VectorXd fold_action = env->action_for(folded);
+  const Eigen::VectorXd fold_action = env->action_for(test::folded(ch, walk->frames[0]));
   const PolicyFunction fold = [&](const Eigen::VectorXd&) { return fold_action; };
   const ImitationReport bad = measure_imitation(*env, fold, 1, 3);
   // Open-loop PD following stays up for about a second before it topples: a 0.6 s episode.
