@@ -7,6 +7,7 @@
 #  - dog_trot: the same objective on DeepMimic's dog (another body, seed 003 section 9);
 #  - backflip_{fsi,asi5,asi10,asi20}: with table/backflip (RSI), Table 2 and Fig. 12 on the backflip.
 # Usage: scripts/tracking_table.sh [iterations per run (default 250: 1.02 M samples)] [out dir]
+# EVAL_ONLY=1 evaluates the runs already there again (after a change to mimic eval) instead.
 set -euo pipefail
 iterations=${1:-250}
 out=${2:-runs/tracking_table}
@@ -19,6 +20,11 @@ mkdir -p "$out/table"
 train() {
   local name=$1
   shift
+  if [[ ${EVAL_ONLY:-0} == 1 ]]; then
+    "$mimic" eval "$out/$name" --episodes 10 --trials 20 --json "$out/$name.json" > "$out/$name.eval.log" 2>&1 ||
+      echo "$name: evaluation failed: see $out/$name.eval.log" >&2
+    return
+  fi
   {
     "$mimic" train "$config" -o "$out/$name" --set iterations="$iterations" --set collect.threads=1 --set checkpoint_every=10 "$@" &&
       "$mimic" eval "$out/$name" --episodes 10 --trials 20 --json "$out/$name.json"
