@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/yaml_reader.hpp"
+#include "env/env_factory.hpp"
 #include "motion/deepmimic.hpp"
 #include "test_data.hpp"
 
@@ -132,6 +134,22 @@ TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
   cfg.lateral_weight = 0.1;
   cfg.init_noise = std::nan("");
   EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+}
+
+// mimic eval --robustness rebuilds a run's env with projectiles: a GAIL or ICCGAN run on this
+// task must accept them.
+TEST(HumanoidForward, LaunchesProjectilesWhenTheConfigAsks) {
+  NEED_HUMANOID();
+  const YamlReader reader("test.yaml");
+  const EnvFactory f = make_env_factory(reader.parse("{name: humanoid_forward, init: fixed, projectiles: {enabled: true, mass: 5}}", "bad"), reader);
+  auto env = f();
+  auto* character = dynamic_cast<CharacterEnv*>(env.get());
+  ASSERT_NE(character, nullptr);
+  ASSERT_NE(character->projectiles(), nullptr);
+  std::mt19937_64 rng(1);
+  env->reset(rng);
+  for (int t = 0; t < 3; ++t) env->step(Eigen::VectorXd::Zero(env->action_size()));
+  EXPECT_EQ(character->projectiles()->stats().launched, 3);  // one per control step
 }
 
 TEST(HumanoidForward, PlacingAtTheTrackStartKeepsTheMotion) {

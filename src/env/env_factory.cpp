@@ -74,7 +74,7 @@ ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader,
   return p;
 }
 
-EnvFactory humanoid_forward(ConfigSection& s) {
+EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   HumanoidForwardConfig c;
   const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
   const std::string clip_file = s.text("clip", "deepmimic/motions/humanoid3d_walk.txt");
@@ -86,6 +86,7 @@ EnvFactory humanoid_forward(ConfigSection& s) {
   c.lateral_weight = s.number("lateral_weight", c.lateral_weight, 0, 1e6);
   c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
+  c.projectiles = read_projectiles(s, reader, "env.projectiles");
   auto ch = load_character(character);
   auto clip = load_clip(clip_file, character);
   return [ch, clip, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clip, c)); };
@@ -131,7 +132,7 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
     f = name == "planar_walker" ? planar_walker(s)
         : name == "reacher"     ? reacher(s)
         : name == "tracking"    ? tracking(s, reader)
-                                : humanoid_forward(s);
+                                : humanoid_forward(s, reader);
   } catch (const ParseError&) {
     throw;
   } catch (const Error& e) {

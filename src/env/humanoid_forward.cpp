@@ -97,6 +97,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   CharacterEnvConfig env_cfg;
   env_cfg.observations = cfg.observations;
   env_cfg.max_seconds = cfg.max_seconds;
+  env_cfg.projectiles = cfg.projectiles;
   // The clip is not the env's reference: it only supplies starts and must not end episodes.
   auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
   const Skeleton sk = ch.skeleton;

@@ -33,6 +33,7 @@ struct HumanoidForwardConfig {
   // The policy's input: proprioception, as the paper's RL runs (joint angles and velocities, root
   // velocity, velocimeter, gyro, uprightness, end effectors). No phase: nothing is tracked.
   ObservationConfig observations{.names = {"full_state", "egocentric"}};
+  ProjectileSpec projectiles;  // seed 004's robustness test when enabled (mimic eval --robustness)
 };
 
 // The task's environment (actions: axis-angle PD targets). `clip` gives Mocap's starts and must
