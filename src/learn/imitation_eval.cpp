@@ -68,16 +68,16 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
       if (over && t > error_steps) break;
       const StepResult r = env.step(act(frames.stacked()));
       frames.push(r.observation);
+      const Pose ref = clip->sample(env.time());
       if (t <= error_steps) {
         sim_frames.push_back(env.world().link_frames());
-        ref_frames.push_back(forward_kinematics(clip->skeleton, clip->sample(env.time())));
+        ref_frames.push_back(forward_kinematics(clip->skeleton, ref));
       }
       if (!over) {
         ret += r.reward();
         fell |= is_failure(r.termination);
         over = r.done();
-        const double ref_root = clip->sample(env.time()).root_pos.z();
-        low = env.world().pose().root_pos.z() < 0.5 * ref_root ? low + 1 : 0;
+        low = env.world().pose().root_pos.z() < 0.5 * ref.root_pos.z() ? low + 1 : 0;
         lay |= low >= kLyingFrames;
       }
     }
