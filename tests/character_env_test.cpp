@@ -101,7 +101,7 @@ TEST(CharacterEnv, TorsoOnTheGroundIsAFall) {
   NEED_HUMANOID();
   const CharacterModel ch = humanoid();
   CharacterEnv env(ch, CharacterEnvConfig{});
-  InitState lying{rest_pose(ch.skeleton, Vec3(0, 0, 0.1)), PoseVelocity{}, 0.0};  // chest sphere touching
+  InitState lying{rest_pose(ch.skeleton, Vec3(0, 0, 0.1)), PoseVelocity{}, 0.0, {}};  // chest sphere touching
   lying.pose.rot[0] = axis_rotation('y', kPi / 2);  // face down
   lying.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
   env.reset(lying);
@@ -137,7 +137,7 @@ TEST(CharacterEnv, ObservationsAreInTheRightFrames) {
   cfg.observations.names = {"egocentric", "links", "phase", "full_state"};
   CharacterEnv env(ch, cfg, walk);
   // Upright root turned to face +Y, moving along world +Y at 1 m/s, at 0.3 s on the clip.
-  InitState s{rest_pose(ch.skeleton, Vec3(2, 3, 0.9)), PoseVelocity{}, 0.3};
+  InitState s{rest_pose(ch.skeleton, Vec3(2, 3, 0.9)), PoseVelocity{}, 0.3, {}};
   s.pose.rot[0] = axis_rotation('z', kPi / 2);
   s.velocity.root_lin = Vec3(0, 1, 0);
   s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());

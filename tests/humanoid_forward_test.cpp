@@ -59,7 +59,7 @@ double max_joint_difference(const Pose& a, const Pose& b) {
 
 // The character up in the air, rigid (PD targets = its pose), flying along +X and sideways.
 InitState flying(const CharacterModel& ch) {
-  InitState s{rest_pose(ch.skeleton, Vec3(0, 0.4, 5.0)), PoseVelocity{}, 0.0};
+  InitState s{rest_pose(ch.skeleton, Vec3(0, 0.4, 5.0)), PoseVelocity{}, 0.0, {}};
   s.velocity.root_lin = Vec3(2.0, 0.5, 0.0);
   s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
   return s;
@@ -200,6 +200,37 @@ TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
   EXPECT_LT(max_joint_difference(env->world().pose(), starts[1]), 1e-12);
 }
 
+// The root's position in frame `f` (oldest first) of a "links" observation.
+Vec3 links_root(const Eigen::VectorXd& obs, int f, int joints) { return obs.segment(f * 7 * joints, 3); }
+
+TEST(HumanoidForward, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  const auto walk = moved(*motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
+  HumanoidForwardConfig cfg;
+  cfg.init_noise = 0.0;
+  cfg.observations = ObservationConfig{.names = {"links"}, .link_history = 5};
+  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  const int nj = ch.skeleton.num_joints();
+  ASSERT_EQ(env->observation_size(), 5 * 7 * nj);
+  // A start at a known time: the oldest frame is the clip's root 4 control steps earlier, seen
+  // from the heading frame of the start.
+  const double t = 0.5, dt = 1.0 / 30;
+  const Eigen::VectorXd at = env->reset(env->state_on_clip(*walk, t));
+  const Vec3 expected = HeadingFrame::of(walk->sample(t)).to_local(walk->sample(t - 4 * dt).root_pos);
+  EXPECT_LT((links_root(at, 0, nj) - expected).norm(), 1e-6);
+  EXPECT_GT(expected.norm(), 0.05);  // the walk moved: not the start repeated
+  // Random starts moved to the track keep the motion that led to them: the root came from
+  // behind (-X in the heading frame) at walking speed, over 4 steps.
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    std::mt19937_64 rng(seed);
+    const Eigen::VectorXd obs = env->reset(rng);
+    const Vec3 travelled = links_root(obs, 4, nj) - links_root(obs, 0, nj);
+    EXPECT_GT(travelled.x(), 0.5 * 4 * dt) << "seed " << seed;
+    EXPECT_LT(travelled.norm(), 3.0 * 4 * dt) << "seed " << seed;
+  }
+}
+
 TEST(HumanoidForward, FixedPoseStartsAreTheRestPoseUpToNoise) {
   NEED_HUMANOID();
   const CharacterModel ch = humanoid();
@@ -282,7 +313,7 @@ TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {
   auto env = make_humanoid_forward_env(ch, nullptr, cfg);
   // Standing but pitched 0.8 rad forward and held rigid by zero actions: it topples onto its face.
   InitState s{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.05)), PoseVelocity{},
-              0.0};
+              0.0, {}};
   s.pose.rot[0] = axis_rotation('y', 0.8);
   s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
   env->reset(s);

@@ -36,7 +36,7 @@ const CharacterModel& humanoid() {
 }
 
 InitState standing_at(const CharacterModel& ch, const Vec3& root) {
-  InitState s{rest_pose(ch.skeleton, root), PoseVelocity{}, 0.0};
+  InitState s{rest_pose(ch.skeleton, root), PoseVelocity{}, 0.0, {}};
   s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
   return s;
 }

@@ -193,7 +193,7 @@ TEST(TerrainEnv, HeightMapIsTheTerrainAroundTheCharacterInItsHeadingFrame) {
   ASSERT_EQ(env.observation_size(), 49);
   const Terrain& t = env.terrain();
   const Vec3 root(6.2, -2.7, 1.4);
-  InitState s{rest_pose(builtin().skeleton, root), PoseVelocity{}, 0.0};
+  InitState s{rest_pose(builtin().skeleton, root), PoseVelocity{}, 0.0, {}};
   s.velocity.joint_ang.assign(builtin().skeleton.joints.size(), Vec3::Zero());
   const Eigen::VectorXd facing_x = env.reset(s);
   s.pose.rot[0] = axis_rotation('z', kPi / 2);  // turned left: facing +y

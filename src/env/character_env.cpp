@@ -6,9 +6,11 @@
 
 namespace mimic {
 
-InitState init_state_from_clip(const Clip& clip, double t) {
+InitState init_state_from_clip(const Clip& clip, double t, int past, double dt) {
   auto [pose, vel] = clip_state(clip, t);
-  return InitState{std::move(pose), std::move(vel), t};
+  InitState s{std::move(pose), std::move(vel), t, {}};
+  for (int k = past; k >= 1; --k) s.past.push_back(clip.sample(t - k * dt));
+  return s;
 }
 
 namespace {
@@ -124,7 +126,7 @@ Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
     // Standing: the rest pose with the lowest body point on the floor (every terrain is flat at
     // the origin).
     const CharacterModel& ch = world_.character();
-    s = InitState{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3)), PoseVelocity{}, 0.0};
+    s = InitState{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3)), PoseVelocity{}, 0.0, {}};
     s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
   }
   if (launcher_) launcher_->reseed(rng());
@@ -132,14 +134,25 @@ Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
 }
 
 Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
-  world_.set_state(init.pose, &init.velocity);
-  world_.set_pd_targets(init.pose);
-  if (launcher_) launcher_->reset(world_);
   time_ = init.time;
   elapsed_ = 0.0;
   history_.clear();
+  // Past poses are placed kinematically only to read their link frames, before the real start.
+  const auto keep = static_cast<std::size_t>(obs_.link_history() - 1);
+  const std::size_t first = init.past.size() > keep ? init.past.size() - keep : 0;
+  for (std::size_t k = first; k < init.past.size(); ++k) {
+    world_.set_state(init.past[k]);
+    history_.push_back(world_.link_frames());
+  }
+  world_.set_state(init.pose, &init.velocity);
+  world_.set_pd_targets(init.pose);
+  if (launcher_) launcher_->reset(world_);
   history_.push_back(world_.link_frames());
   return observe();
+}
+
+InitState CharacterEnv::state_on_clip(const Clip& clip, double t) const {
+  return init_state_from_clip(clip, t, obs_.link_history() - 1, 1.0 / cfg_.sim.control_hz);
 }
 
 Eigen::VectorXd CharacterEnv::observe() {

@@ -35,13 +35,18 @@ struct CharacterEnvConfig {
   ProjectileSpec projectiles;      // seed 004's projectile test when enabled
 };
 
-// Where an episode starts: a pose, its velocities, and the time on the reference clip.
+// Where an episode starts: a pose, its velocities, and the time on the reference clip. `past`:
+// poses one control step apart before `pose`, oldest first, that seed the "links" history (seed
+// 004: the discriminator sees frames t-3...t+1 from the first step on); empty: the start repeats.
 struct InitState {
   Pose pose;
   PoseVelocity velocity;
   double time = 0.0;
+  std::vector<Pose> past;
 };
-InitState init_state_from_clip(const Clip& clip, double t);
+// The clip's state at `t`, with the `past` poses at t - past * dt, ..., t - dt (before the clip's
+// start a wrapping clip wraps, others hold their first frame).
+InitState init_state_from_clip(const Clip& clip, double t, int past = 0, double dt = 0.0);
 
 class CharacterEnv : public Env {
  public:
@@ -56,6 +61,8 @@ class CharacterEnv : public Env {
   // Starts from the init sampler's state: by default the reference clip's start, or standing.
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
   Eigen::VectorXd reset(const InitState& init);
+  // The clip's state at `t` with as many past poses as the observation's history uses.
+  InitState state_on_clip(const Clip& clip, double t) const;
   StepResult step(const Eigen::VectorXd& action) override;
   const mjModel_* physics_model() const override { return world_.model(); }
   mjData_* physics_data() const override { return world_.data(); }

@@ -9,8 +9,14 @@ namespace mimic {
 
 InitState place_at_track_start(InitState s) {
   const Quat undo = heading_rotation(-heading_angle(s.pose.rot[0]));
+  const Vec3 shift(s.pose.root_pos.x(), s.pose.root_pos.y(), 0.0);
   s.pose.root_pos = Vec3(0, 0, s.pose.root_pos.z());
   s.pose.rot[0] = (undo * s.pose.rot[0]).normalized();
+  // Past poses move rigidly with the start, so the history keeps the motion that led to it.
+  for (Pose& p : s.past) {
+    p.root_pos = undo * (p.root_pos - shift);
+    p.rot[0] = (undo * p.rot[0]).normalized();
+  }
   // Root velocities are in the world frame; joint velocities are in their own frames and stay.
   s.velocity.root_lin = undo * s.velocity.root_lin;
   s.velocity.root_ang = undo * s.velocity.root_ang;
@@ -103,9 +109,10 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   const Skeleton sk = ch.skeleton;
   const double noise = cfg.init_noise;
   if (cfg.init == HumanoidForwardConfig::Init::Mocap) {
-    env->set_init_sampler([clip, sk, noise](std::mt19937_64& rng) {
+    const CharacterEnv* self = env.get();  // the sampler lives in the env it reads
+    env->set_init_sampler([clip, sk, noise, self](std::mt19937_64& rng) {
       std::uniform_real_distribution<double> when(0.0, clip->duration());
-      InitState s = place_at_track_start(init_state_from_clip(*clip, when(rng)));
+      InitState s = place_at_track_start(self->state_on_clip(*clip, when(rng)));
       s.time = 0.0;
       perturb_joints(s.pose, sk, noise, rng);
       return s;
@@ -114,7 +121,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
     // Standing like CharacterEnv's default start: the lowest body point just above the floor.
     const Vec3 root(0, 0, ch.rest_root_height() + 1e-3);
     env->set_init_sampler([sk, root, noise](std::mt19937_64& rng) {
-      InitState s{rest_pose(sk, root), PoseVelocity{}, 0.0};
+      InitState s{rest_pose(sk, root), PoseVelocity{}, 0.0, {}};
       s.velocity.joint_ang.assign(sk.joints.size(), Vec3::Zero());
       perturb_joints(s.pose, sk, noise, rng);
       return s;

@@ -32,6 +32,7 @@ struct HumanoidForwardConfig {
   double init_noise = 0.02;      // rad: uniform +- on each joint axis at every start
   // The policy's input: proprioception, as the paper's RL runs (joint angles and velocities, root
   // velocity, velocimeter, gyro, uprightness, end effectors). No phase: nothing is tracked.
+  // Mocap starts fill a "links" history with the clip's poses before the start.
   ObservationConfig observations{.names = {"full_state", "egocentric"}};
   ProjectileSpec projectiles;  // seed 004's robustness test when enabled (mimic eval --robustness)
 };
@@ -44,7 +45,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
                                                         const HumanoidForwardConfig& cfg = {});
 
 // `s` moved to the start of the track: root over the origin facing +X, its height kept, its
-// velocities turned with it.
+// velocities and past poses turned with it.
 InitState place_at_track_start(InitState s);
 
 }  // namespace mimic

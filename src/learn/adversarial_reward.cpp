@@ -170,6 +170,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   d.loss = s.choice("loss", d.loss, {"bce", "hinge"});
   d.heads = static_cast<int>(s.integer("heads", d.heads, 1, 1024));
   d.gradient_penalty = s.number("gradient_penalty", d.gradient_penalty, 0, 1e6);
+  d.penalty_heads = static_cast<int>(s.integer("penalty_heads", d.penalty_heads, 0, 1024));
   d.lr = s.number("lr", d.lr, 1e-12, 1);
   d.epochs = static_cast<int>(s.integer("epochs", d.epochs, 0, 1000));
   d.batch = static_cast<int>(s.integer("batch", d.batch, 1, 1 << 20));

@@ -25,8 +25,8 @@ Demonstrations clip_demonstrations(CharacterEnv& env, const Clip& clip, int pass
   for (int p = 0; p < passes; ++p) {
     const double start = dt * p / passes;
     for (int k = 0; k < steps && start + (k + 1) * dt <= clip.duration(); ++k, ++row) {
-      d.obs.row(row) = env.reset(init_state_from_clip(clip, start + k * dt)).transpose();
-      d.next_obs.row(row) = env.reset(init_state_from_clip(clip, start + (k + 1) * dt)).transpose();
+      d.obs.row(row) = env.reset(env.state_on_clip(clip, start + k * dt)).transpose();
+      d.next_obs.row(row) = env.reset(env.state_on_clip(clip, start + (k + 1) * dt)).transpose();
       d.episode.push_back(p);
     }
   }

@@ -2,7 +2,8 @@
 // Expert demonstrations from motion capture (seeds 000 and 004 imitate clips, not policies): the
 // environment's own observation of the clip's state (pose and velocities set kinematically) at
 // every control step, paired with the next step's. Mocap has no actions: they are left out (0
-// columns), so only `transition: s` or `ss` can use these files. Torch-free.
+// columns), so only `transition: s` or `ss` can use these files. A "links" history holds the clip's
+// previous poses, as a policy's does in mid-episode (seed 004's o_{t-3:t+1}). Torch-free.
 #include "env/character_env.hpp"
 #include "learn/demonstrations.hpp"
 

@@ -19,16 +19,21 @@ torch::Tensor hinge_loss(const torch::Tensor& expert_scores, const torch::Tensor
   return torch::relu(1.0 + policy_scores).mean() + torch::relu(1.0 - expert_scores).mean();
 }
 
-torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points) {
+torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points, const std::vector<std::int64_t>& heads) {
   const torch::Tensor x = points.detach().requires_grad_(true);
   const torch::Tensor out = net->forward(x);
+  std::vector<std::int64_t> all;
+  if (heads.empty())
+    for (std::int64_t i = 0; i < out.size(1); ++i) all.push_back(i);
+  const std::vector<std::int64_t>& which = heads.empty() ? all : heads;
   torch::Tensor sum = torch::zeros({}, out.options());
   // Each head's own gradient (a gradient of the sum over heads would mix them).
-  for (std::int64_t i = 0; i < out.size(1); ++i) {
+  for (const std::int64_t i : which) {
+    if (i < 0 || i >= out.size(1)) throw Error("gradient penalty: no head " + std::to_string(i));
     const torch::Tensor g = torch::autograd::grad({out.select(1, i).sum()}, {x}, {}, /*retain_graph=*/true, /*create_graph=*/true)[0];
     sum = sum + (g.norm(2, 1) - 1.0).square().mean();
   }
-  return sum / static_cast<double>(out.size(1));
+  return sum / static_cast<double>(which.size());
 }
 
 torch::Tensor gail_reward(const torch::Tensor& logits, double clip) {
@@ -41,6 +46,7 @@ Discriminator::Discriminator(torch::Tensor expert, const DiscriminatorConfig& cf
     : cfg_(cfg), expert_(expert.to(torch::kFloat32).contiguous()), rng_(seed) {
   if (expert_.dim() != 2 || expert_.size(0) < 1) throw Error("discriminator: no expert samples");
   if (cfg_.heads < 1 || cfg_.batch < 1 || cfg_.epochs < 0) throw Error("discriminator: heads and batch must be positive");
+  if (cfg_.penalty_heads < 0) throw Error("discriminator: penalty_heads must be >= 0 (0: every head)");
   mean_ = expert_.mean(0);
   // A feature that never varies in the demonstrations keeps unit scale (no division by zero).
   const torch::Tensor sd = expert_.size(0) > 1 ? expert_.std(0) : torch::ones_like(mean_);
@@ -111,7 +117,14 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
         std::vector<float> alpha(static_cast<std::size_t>(b));
         for (float& a : alpha) a = unit(rng_);
         const torch::Tensor a = torch::from_blob(alpha.data(), {b, 1}, torch::kFloat32).clone();
-        const torch::Tensor penalty = gradient_penalty(net_, a * e + (1 - a) * p);
+        std::vector<std::int64_t> heads;  // empty: all
+        if (cfg_.penalty_heads > 0 && cfg_.penalty_heads < cfg_.heads) {
+          std::vector<std::int64_t> all(static_cast<std::size_t>(cfg_.heads));
+          std::iota(all.begin(), all.end(), 0);
+          std::shuffle(all.begin(), all.end(), rng_);
+          heads.assign(all.begin(), all.begin() + cfg_.penalty_heads);
+        }
+        const torch::Tensor penalty = gradient_penalty(net_, a * e + (1 - a) * p, heads);
         s.penalty += penalty.item<double>();
         loss = loss + cfg_.gradient_penalty * penalty;
       }

@@ -17,6 +17,9 @@ struct DiscriminatorConfig {
   std::string loss = "bce";       // bce (GAIL) | hinge (ICCGAN)
   int heads = 1;                  // N; the reward averages over them
   double gradient_penalty = 0.0;  // lambda_GP on interpolates of expert and policy samples
+  // Heads whose penalty each minibatch takes, drawn anew each time (0: all). The penalty costs one
+  // double backward per head; a random subset is an unbiased estimate of eq. 4's mean over heads.
+  int penalty_heads = 0;
   double lr = 3e-4;
   int epochs = 2;                 // passes per iteration over as many samples as the iteration collected
   int batch = 256;                // policy samples per minibatch (and as many expert samples)
@@ -32,8 +35,8 @@ torch::Tensor bce_loss(const torch::Tensor& expert_logits, const torch::Tensor& 
 // Seed 004 eq. 2: E[max(0, 1 + D(policy))] + E[max(0, 1 - D(expert))].
 torch::Tensor hinge_loss(const torch::Tensor& expert_scores, const torch::Tensor& policy_scores);
 // Seed 004 eq. 3: mean over heads of E[(|grad_x D_i(x)| - 1)^2] at `points` (with a graph, so the
-// penalty trains the network: double backward).
-torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points);
+// penalty trains the network: double backward); over the listed heads only when `heads` is given.
+torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points, const std::vector<std::int64_t>& heads = {});
 // Per-sample rewards [batch]: GAIL's -log(1 - sigmoid(logit)) = softplus(logit), clipped at `clip`
 // and averaged over heads; ICCGAN's mean over heads of clip(D_i, -1, 1) (seed 004 eq. 5).
 torch::Tensor gail_reward(const torch::Tensor& logits, double clip);

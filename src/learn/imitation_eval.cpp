@@ -53,7 +53,7 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
   std::vector<LinkFrames> sim_frames, ref_frames;
   for (int i = 0; i < trials; ++i) {
     const double t0 = clip->duration() * i / trials;
-    frames.reset(env.reset(init_state_from_clip(*clip, t0)));
+    frames.reset(env.reset(env.state_on_clip(*clip, t0)));
     // Steps of the full episode: to the time limit, or to a non-cyclic clip's end.
     const double episode_seconds = cyclic ? env.config().max_seconds : std::min(env.config().max_seconds, clip->duration() - t0);
     const int episode_steps = std::max(1, static_cast<int>(std::ceil(episode_seconds * hz - 1e-9)));
@@ -99,7 +99,7 @@ RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act
   FrameHistory frames(history);
   std::mt19937_64 rng(seed);
   for (int i = 0; i < trials; ++i) {
-    frames.reset(clip ? env.reset(init_state_from_clip(*clip, clip->duration() * i / trials)) : env.reset(rng));
+    frames.reset(clip ? env.reset(env.state_on_clip(*clip, clip->duration() * i / trials)) : env.reset(rng));
     if (ProjectileLauncher* launcher = env.projectiles()) launcher->reseed(seed * 1000003 + static_cast<std::uint64_t>(i));
     int lying = 0, survived = max_frames;
     for (int t = 1; t <= max_frames; ++t) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "learn/discriminator.hpp"
 
 using namespace mimic;
@@ -68,6 +69,43 @@ TEST(GradientPenalty, EachHeadsGradientNormAgainstOneWithGradientsThroughIt) {
   EXPECT_NEAR(g[0][1].item<double>(), 3.2, 1e-4);
   EXPECT_NEAR(g[1][0].item<double>(), 0.0, 1e-5);
   EXPECT_NEAR(g[1][1].item<double>(), 0.0, 1e-5);
+}
+
+TEST(GradientPenalty, ASubsetOfHeadsAveragesOnlyThoseAndAllSingletonsAverageToTheFullPenalty) {
+  NetworkConfig cfg;
+  cfg.hidden = {};
+  FeatureNet net(2, 3, cfg);
+  {
+    torch::NoGradGuard no_grad;
+    net->named_parameters()["layers.0.weight"].copy_(t2({3.0f, 4.0f, 0.6f, 0.8f, 0.0f, 2.0f}, 3, 2));  // norms 5, 1, 2
+  }
+  const torch::Tensor points = torch::randn({5, 2});
+  EXPECT_NEAR(gradient_penalty(net, points, {0}).item<double>(), 16.0, 1e-4);
+  EXPECT_NEAR(gradient_penalty(net, points, {0, 2}).item<double>(), (16.0 + 1.0) / 2, 1e-4);
+  double singles = 0;
+  for (std::int64_t i = 0; i < 3; ++i) singles += gradient_penalty(net, points, {i}).item<double>() / 3;
+  EXPECT_NEAR(singles, gradient_penalty(net, points).item<double>(), 1e-4);
+  EXPECT_NEAR(singles, 17.0 / 3, 1e-4);
+  EXPECT_THROW(gradient_penalty(net, points, {3}), Error);
+}
+
+TEST(Discriminator, PenaltyHeadsPenalisesARandomSubsetAndAllWhenAsManyAsHeads) {
+  torch::manual_seed(2);
+  const torch::Tensor expert = torch::randn({256, 3}) + 1.0, policy = torch::randn({256, 3}) - 1.0;
+  auto penalty_with = [&](int penalty_heads) {
+    DiscriminatorConfig cfg;
+    cfg.loss = "hinge", cfg.heads = 8, cfg.gradient_penalty = 1.0, cfg.penalty_heads = penalty_heads;
+    cfg.net.hidden = {16};
+    cfg.batch = 64;
+    torch::manual_seed(5);  // the same initial network each time
+    Discriminator d(expert, cfg, 3);
+    return d.update(policy).penalty;
+  };
+  const double all = penalty_with(0);
+  EXPECT_EQ(penalty_with(8), all);  // as many as there are heads: every head, no draw
+  const double some = penalty_with(2);
+  EXPECT_GT(some, 0.0);
+  EXPECT_NE(some, all);
 }
 
 TEST(Discriminator, LearnsToTellTwoDistributionsApartAndSavesExactly) {

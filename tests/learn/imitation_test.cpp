@@ -306,6 +306,29 @@ TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   EXPECT_NE(error_of([&] { clip_demonstrations(*env, dog); }).find("does not fit the environment's character"), std::string::npos);
 }
 
+TEST(ClipDemonstrations, ALinkHistoryHoldsTheClipsPreviousPoses) {
+  std::filesystem::path dir;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", dir);
+  dir = dir.parent_path();
+  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+  const auto walk = std::make_shared<const Clip>(load_deepmimic_motion(dir.parent_path() / "motions/humanoid3d_walk.txt", ch.skeleton));
+  HumanoidForwardConfig cfg;
+  cfg.observations = ObservationConfig{.names = {"links"}, .link_history = 3};
+  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  const Demonstrations d = clip_demonstrations(*env, *walk);
+  const int nj = ch.skeleton.num_joints();
+  const double dt = 1.0 / 30;
+  // Row i is the clip at i dt: its oldest frame is the root at (i - 2) dt in the heading frame at
+  // i dt (seed 004's o_{t-3:t+1} for the expert, as the policy's own history in mid-episode).
+  for (const int i : {0, 1, 5, 20}) {
+    const double t = i * dt;
+    const Vec3 expected = HeadingFrame::of(walk->sample(t)).to_local(walk->sample(t - 2 * dt).root_pos);
+    EXPECT_LT((Vec3(d.obs.row(i).segment(0, 3).transpose()) - expected).norm(), 1e-6) << i;
+    const Vec3 middle = HeadingFrame::of(walk->sample(t + dt)).to_local(walk->sample(t).root_pos);
+    EXPECT_LT((Vec3(d.next_obs.row(i).segment(7 * nj, 3).transpose()) - middle).norm(), 1e-6) << i;
+  }
+}
+
 TEST(AdversarialImitation, ACheckpointedRunResumesExactlyWithItsDiscriminator) {
   const auto dir = test::temp_dir("gail_resume");
   write_demonstrations(dir / "expert.csv", oscillator_expert(4));
