@@ -98,6 +98,11 @@ TEST(SimWorld, SetStateReproducesClipKinematicsWithin1mm) {
   w.set_state(walk.frames[7]);
   const Pose back = w.pose();
   for (std::size_t j = 0; j < back.rot.size(); ++j) EXPECT_LT(rotation_distance(back.rot[j], walk.frames[7].rot[j]), 1e-9);
+  EXPECT_LT((w.root_position() - walk.frames[7].root_pos).norm(), 1e-12);
+  // After physics steps too: the root alone reads as the full pose does.
+  for (int i = 0; i < 5; ++i) w.step();
+  EXPECT_EQ(w.root_position(), w.pose().root_pos);
+  EXPECT_GT((w.root_position() - walk.frames[7].root_pos).norm(), 1e-4);
 }
 
 TEST(SimWorld, KinematicWalkKeepsFeetAtTheGround) {

@@ -76,7 +76,11 @@ std::string cell(double v, const char* format) { return std::isfinite(v) ? fmt::
 // Samples and wall time behind a run: the last row of its metrics.csv ("-" where it is gone).
 std::pair<std::string, std::string> budget_of(const std::filesystem::path& run) {
   const std::filesystem::path csv = run / "metrics.csv";
-  if (!std::filesystem::exists(csv)) return {"-", "-"};
+  if (!std::filesystem::exists(csv)) {
+    spdlog::warn("{} not found: no budget for that row (the run's path is as mimic eval was given it, relative to where it ran)",
+                 csv.string());
+    return {"-", "-"};
+  }
   const MetricsTable t = read_metrics_csv(csv);
   if (t.rows.empty()) return {"-", "-"};
   const std::vector<double> samples = t.column("samples"), wall = t.column("wall_s");

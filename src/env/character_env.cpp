@@ -171,7 +171,7 @@ bool CharacterEnv::fall_contact() const {
 
 bool CharacterEnv::below_reference() const {
   if (!reference_ || !(cfg_.fall_height > 0)) return false;
-  return world_.pose().root_pos.z() < cfg_.fall_height * reference_->sample(time_).root_pos.z();
+  return world_.root_position().z() < cfg_.fall_height * reference_->sample(time_).root_pos.z();
 }
 
 Termination CharacterEnv::check_termination() const {

@@ -118,6 +118,12 @@ Pose World::pose() const {
   return p;
 }
 
+Vec3 World::root_position() const {
+  if (ch_.skeleton.joints.front().type != JointType::Free) return pose().root_pos;
+  const int a = qpos_.front();
+  return Vec3(d_->qpos[a], d_->qpos[a + 1], d_->qpos[a + 2]);
+}
+
 void World::write_pose(const Pose& pose, mjData* other) const {
   if (pose.rot.size() != ch_.skeleton.joints.size()) throw Error("write_pose: pose has the wrong number of joints");
   write_qpos(ch_.skeleton, qpos_, pose, other);

@@ -39,6 +39,8 @@ class World {
   void set_state(const Pose& pose, const PoseVelocity* vel = nullptr);
   // The current pose (root position and rotation, joint rotations).
   Pose pose() const;
+  // The root's position alone (cheaper than pose() for per-step checks).
+  Vec3 root_position() const;
   // Writes `pose` into `other`, data of this world's model (a ghost to draw), and places its
   // bodies (mj_kinematics); this world's own state is untouched.
   void write_pose(const Pose& pose, mjData_* other) const;
