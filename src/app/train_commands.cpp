@@ -27,7 +27,7 @@ std::string cell(const IterationMetrics& m, const char* name, const char* format
 
 void add_train_commands(CLI::App& app) {
   struct Args {
-    std::filesystem::path config, out;
+    std::filesystem::path config, out, bench_config;
     bool resume = false;
     int iterations = 0, threads = -1;
     std::vector<std::string> settings;
@@ -71,12 +71,18 @@ void add_train_commands(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "throughput figures");
   bench->require_subcommand(1);
   CLI::App* bench_train = bench->add_subcommand(
-      "train", "end-to-end PPO samples/s on the humanoid (seed 004 Table 1 sizes) beside the simulation-only rate");
+      "train", "end-to-end training samples/s (the humanoid at seed 004 Table 1 sizes, or --config) beside the simulation-only rate");
   bench_train->add_option("--threads", args->bench.threads, "worker threads (a list: 1,2)")->delimiter(',')->capture_default_str();
   bench_train->add_option("--iterations", args->bench.iterations, "timed iterations after one warm-up")->capture_default_str()->check(CLI::PositiveNumber);
   bench_train->add_option("--samples", args->bench.samples, "samples per iteration (PPO buffer)")->capture_default_str()->check(CLI::PositiveNumber);
   bench_train->add_option("--envs", args->bench.envs, "environments")->capture_default_str()->check(CLI::PositiveNumber);
+  bench_train->add_option("--config", args->bench_config, "time this training config instead (e.g. an imitation run, discriminator included)")
+      ->check(CLI::ExistingFile);
   bench_train->callback([args] {
+    if (!args->bench_config.empty()) {
+      args->bench.config_source = args->bench_config.string();
+      args->bench.config_text = read_text_file(args->bench_config);
+    }
     const std::vector<TrainBenchResult> results = run_train_benchmark(args->bench, [](const std::string& line) { spdlog::info("{}", line); });
     fmt::print("{}", format_train_benchmark(args->bench, results));
   });

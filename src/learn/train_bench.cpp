@@ -60,12 +60,16 @@ std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
   std::vector<TrainBenchResult> out;
   for (int threads : opts.threads) {
     if (threads < 1) throw Error("bench train: thread counts must be >= 1");
-    const TrainConfig cfg = parse_train_config(train_benchmark_config(opts, threads), "bench train config");
+    TrainConfig cfg = opts.config_text.empty() ? parse_train_config(train_benchmark_config(opts, threads), "bench train config")
+                                               : parse_train_config(opts.config_text, opts.config_source);
+    cfg.collect.threads = threads;
+    cfg.iterations = opts.iterations + 1;
+    cfg.tensorboard = false;
     TrainBenchResult r;
     r.threads = threads;
     Trainer trainer(cfg);
-    r.sim_only_steps_per_s = simulation_rate(make_env_factory(cfg.env, YamlReader(cfg.source)), opts.envs, threads,
-                                             std::max(1, opts.samples / opts.envs));
+    r.sim_only_steps_per_s = simulation_rate(make_env_factory(cfg.env, YamlReader(cfg.source)), cfg.collect.envs, threads,
+                                             std::max(1, cfg.collect.samples / cfg.collect.envs));
     if (progress) progress(fmt::format("{} thread(s): simulation only {:.0f} steps/s; training {} iterations...", threads, r.sim_only_steps_per_s, opts.iterations + 1));
     trainer.iterate();  // warm-up: allocations, first normaliser statistics
     double sim = 0, inf = 0, learn = 0;
@@ -91,12 +95,14 @@ std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
 }
 
 std::string format_train_benchmark(const TrainBenchOptions& opts, const std::vector<TrainBenchResult>& results) {
-  std::string s = fmt::format(
-      "PPO on humanoid3d (34 DoF, 600 Hz physics / 30 Hz control), policy and value 1024-512, {} samples per iteration,\n"
-      "5 epochs of minibatch 256, {} environments, {} timed iterations:\n\n"
+  std::string s = opts.config_text.empty()
+                      ? fmt::format("PPO on humanoid3d (34 DoF, 600 Hz physics / 30 Hz control), policy and value 1024-512, {} samples per "
+                                    "iteration,\n5 epochs of minibatch 256, {} environments, {} timed iterations:\n\n",
+                                    opts.samples, opts.envs, opts.iterations)
+                      : fmt::format("{} ({} timed iterations):\n\n", opts.config_source, opts.iterations);
+  s += fmt::format(
       "| threads | sim only (steps/s) | end to end (samples/s) | per thread | simulation | inference | learning | vs 1 thread |\n"
-      "| --- | --- | --- | --- | --- | --- | --- | --- |\n",
-      opts.samples, opts.envs, opts.iterations);
+      "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
   double base = 0;
   for (const auto& r : results) {
     if (r.threads == 1) base = r.train_samples_per_s;

@@ -1,7 +1,8 @@
 #pragma once
 // `mimic bench train`: end-to-end PPO throughput (simulation + inference + learning) on the
 // humanoid with seed 004's Table 1 sizes (policy and value 1024-512, 5 epochs, minibatch 256,
-// buffer 4096), beside the simulation-only rate measured in the same run with the same threads.
+// buffer 4096), or of any training config (imitation: discriminator updates included), beside the
+// simulation-only rate measured in the same run with the same threads.
 #include <functional>
 #include <string>
 #include <vector>
@@ -13,6 +14,9 @@ struct TrainBenchOptions {
   int iterations = 3;   // timed, after one warm-up iteration
   int samples = 4096;
   int envs = 16;
+  // A training config (YAML text) to time instead of the built-in one; its collect.threads and
+  // iterations are replaced, `samples` and `envs` are its own.
+  std::string config_text, config_source;
 };
 
 struct TrainBenchResult {
