@@ -17,6 +17,7 @@
 #include "learn/adversarial_reward.hpp"
 #include "learn/trainer_impl.hpp"
 #include "toy_env.hpp"
+#include "../humanoid_data.hpp"
 #include "../test_data.hpp"
 
 using namespace mimic;
@@ -307,11 +308,9 @@ TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
 }
 
 TEST(ClipDemonstrations, ALinkHistoryHoldsTheClipsPreviousPoses) {
-  std::filesystem::path dir;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", dir);
-  dir = dir.parent_path();
-  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-  const auto walk = std::make_shared<const Clip>(load_deepmimic_motion(dir.parent_path() / "motions/humanoid3d_walk.txt", ch.skeleton));
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   HumanoidForwardConfig cfg;
   cfg.observations = ObservationConfig{.names = {"links"}, .link_history = 3};
   auto env = make_humanoid_forward_env(ch, walk, cfg);
