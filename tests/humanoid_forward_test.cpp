@@ -113,6 +113,80 @@ TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
   EXPECT_NEAR(term(target->step(zero), "forward"), -0.5 * std::abs(2.0 - 3.0), 1e-9);
 }
 
+TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.goal = HumanoidForwardConfig::Goal::Heading;
+  cfg.goal_speed = 1.0;
+  cfg.goal_weight = 2.0;
+  cfg.control_weight = 0.0;
+  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  const auto layout = env->observation_layout();
+  ASSERT_EQ(layout.back().name, "goal");
+  ASSERT_EQ(layout.back().size, 2);
+  ASSERT_EQ(layout.back().offset + 2, env->observation_size());
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
+  // Flying at (2, 0.5) m/s, facing +X: towards +Y the speed along the target is 0.5, a miss of 0.5.
+  env->reset(flying(ch));
+  set_goal_heading(*env, kPi / 2);
+  StepResult r = env->step(zero);
+  ASSERT_EQ(r.reward_terms.size(), 3u);  // alive, goal, control: the track's terms give way
+  EXPECT_EQ(r.reward_terms[1].first, "goal");
+  EXPECT_NEAR(term(r, "goal"), 2.0 * std::exp(-0.25 * 0.5 * 0.5), 1e-9);
+  EXPECT_NEAR(r.observation[env->observation_size() - 2], 0.0, 1e-6);  // cos, sin of the target
+  EXPECT_NEAR(r.observation[env->observation_size() - 1], 1.0, 1e-6);  // in the heading frame
+  // Along +X: 2 m/s for a target of 1, a miss of 1.
+  env->reset(flying(ch));
+  set_goal_heading(*env, 0.0);
+  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0 * std::exp(-0.25), 1e-9);
+  // Parts are named once and hold at least one value.
+  const auto nothing = [](const CharacterEnv&, Eigen::Ref<Eigen::VectorXd>) {};
+  EXPECT_THROW(env->add_observation_part("goal", 1, nothing), Error);
+  EXPECT_THROW(env->add_observation_part("empty", 0, nothing), Error);
+}
+
+TEST(HumanoidForward, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.goal = HumanoidForwardConfig::Goal::Heading;
+  cfg.goal_period = 0.5;  // 15 control steps
+  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
+  std::mt19937_64 rng(4);
+  env->reset(rng);
+  const double first = goal_heading(*env);
+  for (int t = 1; t < 15; ++t) {
+    env->step(zero);
+    EXPECT_EQ(goal_heading(*env), first) << t;
+  }
+  const StepResult r = env->step(zero);
+  const double second = goal_heading(*env);
+  EXPECT_NE(second, first);
+  EXPECT_GE(second, -kPi);
+  EXPECT_LT(second, kPi);
+  // The step that draws the new target already shows it.
+  const double relative = second - heading_angle(env->world().pose().rot[0]);
+  EXPECT_NEAR(r.observation[env->observation_size() - 2], std::cos(relative), 1e-9);
+  EXPECT_NEAR(r.observation[env->observation_size() - 1], std::sin(relative), 1e-9);
+  // Each start draws one; the same draw gives the same target.
+  env->reset(rng);
+  EXPECT_NE(goal_heading(*env), second);
+  std::mt19937_64 again(4);
+  env->reset(again);
+  EXPECT_EQ(goal_heading(*env), first);
+  // Only this env has one; periods must be positive.
+  HumanoidForwardConfig plain_cfg;
+  plain_cfg.init = Init::FixedPose;
+  auto plain = make_humanoid_forward_env(ch, nullptr, plain_cfg);
+  EXPECT_THROW(goal_heading(*plain), Error);
+  cfg.goal_period = 0.0;
+  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+}
+
 TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
   NEED_HUMANOID();
   const CharacterModel ch = humanoid();

@@ -155,9 +155,29 @@ InitState CharacterEnv::state_on_clip(const Clip& clip, double t) const {
   return init_state_from_clip(clip, t, obs_.link_history() - 1, 1.0 / cfg_.sim.control_hz);
 }
 
+std::vector<ObservationSlice> CharacterEnv::observation_layout() const {
+  std::vector<ObservationSlice> layout = obs_.layout();
+  int offset = obs_.size();
+  for (const ExtraPart& p : extra_) layout.push_back(ObservationSlice{p.name, offset, p.size}), offset += p.size;
+  return layout;
+}
+
+void CharacterEnv::add_observation_part(std::string name, int size, ObservationPart fill) {
+  if (size < 1) throw Error("observation part '" + name + "' must have at least one value");
+  for (const ObservationSlice& s : observation_layout())
+    if (s.name == name) throw Error("observation part '" + name + "' is already in the observation");
+  extra_.push_back(ExtraPart{std::move(name), size, std::move(fill)});
+  extra_size_ += size;
+}
+
 Eigen::VectorXd CharacterEnv::observe() {
-  Eigen::VectorXd out;
-  obs_.build(ObservationContext{&world_, &history_, reference_.get(), time_, &terrain_}, out);
+  Eigen::VectorXd named;
+  obs_.build(ObservationContext{&world_, &history_, reference_.get(), time_, &terrain_}, named);
+  if (extra_.empty()) return named;
+  Eigen::VectorXd out(observation_size());
+  out.head(named.size()) = named;
+  Eigen::Index at = named.size();
+  for (const ExtraPart& p : extra_) p.fill(*this, out.segment(at, p.size)), at += p.size;
   return out;
 }
 

@@ -55,9 +55,9 @@ class CharacterEnv : public Env {
 
   CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& cfg, std::shared_ptr<const Clip> reference = nullptr);
 
-  int observation_size() const override { return obs_.size(); }
+  int observation_size() const override { return obs_.size() + extra_size_; }
   int action_size() const override { return action_size_; }
-  std::vector<ObservationSlice> observation_layout() const override { return obs_.layout(); }
+  std::vector<ObservationSlice> observation_layout() const override;
   // Starts from the init sampler's state: by default the reference clip's start, or standing.
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
   Eigen::VectorXd reset(const InitState& init);
@@ -69,6 +69,10 @@ class CharacterEnv : public Env {
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
   void add_reward_term(std::string name, RewardTerm term) { rewards_.emplace_back(std::move(name), std::move(term)); }
+  // A task's own observation part (a goal, say), appended after the named ones: `fill` writes
+  // `size` values. Add parts before the first reset.
+  using ObservationPart = std::function<void(const CharacterEnv&, Eigen::Ref<Eigen::VectorXd>)>;
+  void add_observation_part(std::string name, int size, ObservationPart fill);
   // The most one step can earn, for normalised returns; 0 when the task does not bound it.
   double max_step_reward() const { return max_step_reward_; }
   void set_max_step_reward(double r) { max_step_reward_ = r; }
@@ -108,6 +112,13 @@ class CharacterEnv : public Env {
   std::vector<int> fall_joints_;
   std::deque<LinkFrames> history_;
   std::vector<std::pair<std::string, RewardTerm>> rewards_;
+  struct ExtraPart {
+    std::string name;
+    int size;
+    ObservationPart fill;
+  };
+  std::vector<ExtraPart> extra_;
+  int extra_size_ = 0;
   InitSampler init_sampler_;
   Pusher pusher_;
   std::unique_ptr<ProjectileLauncher> launcher_;

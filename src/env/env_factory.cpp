@@ -88,6 +88,10 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
   c.observations.names = s.texts("observations", c.observations.names);
   c.observations.link_history = static_cast<int>(s.integer("link_history", c.observations.link_history, 1, 64));
+  c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? HumanoidForwardConfig::Goal::Heading : HumanoidForwardConfig::Goal::None;
+  c.goal_speed = s.number("goal_speed", c.goal_speed, 0, 100);
+  c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);
+  c.goal_weight = s.number("goal_weight", c.goal_weight, 0, 1e6);
   c.projectiles = read_projectiles(s, reader, "env.projectiles");
   auto ch = load_character(character);
   auto clip = load_clip(clip_file, character);

@@ -50,29 +50,45 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const Cli
       {"control_weight", cfg.control_weight}, {"init_noise", cfg.init_noise}};
   for (const auto& [name, v] : values)
     if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
+  if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_period > 0) || !std::isfinite(cfg.goal_period))
+    fail("goal_speed and goal_weight must be non-negative and goal_period positive");
   if (cfg.init == HumanoidForwardConfig::Init::Mocap && !clip)
     fail("Mocap initialisation needs a motion clip");
   if (clip && clip->skeleton.num_joints() != ch.skeleton.num_joints())
     fail("clip '" + clip->name + "' does not fit character '" + ch.name + "'");
 }
 
+}  // namespace
+
 // CharacterEnv does not keep the action or the root's position before a step: this keeps both
-// for the control and forward terms.
+// for the control and forward terms, and the goal's target direction.
 class HumanoidForwardEnv final : public CharacterEnv {
  public:
   HumanoidForwardEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg,
                      const HumanoidForwardConfig& cfg)
-      : CharacterEnv(ch, env_cfg) {
-    const double dt = 1.0 / env_cfg.sim.control_hz;
+      : CharacterEnv(ch, env_cfg), cfg_(cfg), dt_(1.0 / env_cfg.sim.control_hz) {
+    const double dt = dt_;
     add_reward_term("alive", [bonus = cfg.alive_bonus](const CharacterEnv&) { return bonus; });
-    add_reward_term("forward", [this, dt, w = cfg.forward_weight,
-                                target = cfg.target_speed](const CharacterEnv& env) {
-      const double vx = (env.world().pose().root_pos.x() - x_before_) / dt;
-      return target > 0 ? -w * std::abs(vx - target) : w * vx;
-    });
-    add_reward_term("lateral", [w = cfg.lateral_weight](const CharacterEnv& env) {
-      return -w * std::abs(env.world().pose().root_pos.y());
-    });
+    if (cfg.goal == HumanoidForwardConfig::Goal::Heading) {
+      add_reward_term("goal", [this, dt](const CharacterEnv& env) {
+        const Vec3 now = env.world().root_position();
+        const double along = (std::cos(goal_) * (now.x() - before_.x()) + std::sin(goal_) * (now.y() - before_.y())) / dt;
+        const double miss = cfg_.goal_speed - along;
+        return cfg_.goal_weight * std::exp(-0.25 * miss * miss);
+      });
+      add_observation_part("goal", 2, [this](const CharacterEnv& env, Eigen::Ref<Eigen::VectorXd> out) {
+        const double relative = goal_ - heading_angle(env.world().pose().rot[0]);
+        out[0] = std::cos(relative), out[1] = std::sin(relative);
+      });
+    } else {
+      add_reward_term("forward", [this, dt, w = cfg.forward_weight, target = cfg.target_speed](const CharacterEnv& env) {
+        const double vx = (env.world().root_position().x() - before_.x()) / dt;
+        return target > 0 ? -w * std::abs(vx - target) : w * vx;
+      });
+      add_reward_term("lateral", [w = cfg.lateral_weight](const CharacterEnv& env) {
+        return -w * std::abs(env.world().root_position().y());
+      });
+    }
     add_reward_term("control", [this, w = cfg.control_weight](const CharacterEnv&) {
       double sum = 0;
       for (const double a : action_) {
@@ -83,18 +99,57 @@ class HumanoidForwardEnv final : public CharacterEnv {
     });
   }
 
-  StepResult step(const Eigen::VectorXd& action) override {
-    action_ = action;
-    x_before_ = world().pose().root_pos.x();
-    return CharacterEnv::step(action);
+  using CharacterEnv::reset;
+  Eigen::VectorXd reset(std::mt19937_64& rng) override {
+    goal_rng_.seed(rng());
+    draw_goal();
+    return CharacterEnv::reset(rng);
   }
 
+  StepResult step(const Eigen::VectorXd& action) override {
+    action_ = action;
+    before_ = world().root_position();
+    StepResult r = CharacterEnv::step(action);
+    // A new target after each period: this step was rewarded for the old one, the next observes the new.
+    const auto periods = [this](double t) { return std::floor((t + 1e-9) / cfg_.goal_period); };
+    if (cfg_.goal == HumanoidForwardConfig::Goal::Heading && periods(elapsed()) > periods(elapsed() - dt_)) {
+      draw_goal();
+      const auto layout = observation_layout();
+      const ObservationSlice& g = layout.back();  // "goal", the last part
+      const double relative = goal_ - heading_angle(world().pose().rot[0]);
+      r.observation[g.offset] = std::cos(relative), r.observation[g.offset + 1] = std::sin(relative);
+    }
+    return r;
+  }
+
+  bool has_goal() const { return cfg_.goal == HumanoidForwardConfig::Goal::Heading; }
+  double goal() const { return goal_; }
+  void set_goal(double yaw) { goal_ = yaw; }
+
  private:
+  void draw_goal() {
+    if (cfg_.goal == HumanoidForwardConfig::Goal::Heading) goal_ = std::uniform_real_distribution<double>(-kPi, kPi)(goal_rng_);
+  }
+
+  HumanoidForwardConfig cfg_;
+  double dt_;
   Eigen::VectorXd action_;
-  double x_before_ = 0.0;
+  Vec3 before_ = Vec3::Zero();
+  double goal_ = 0.0;
+  std::mt19937_64 goal_rng_;
 };
 
-}  // namespace
+double goal_heading(const CharacterEnv& env) {
+  const auto* h = dynamic_cast<const HumanoidForwardEnv*>(&env);
+  if (!h || !h->has_goal()) throw Error("goal_heading: not a humanoid_forward environment with goal: heading");
+  return h->goal();
+}
+
+void set_goal_heading(CharacterEnv& env, double yaw) {
+  auto* h = dynamic_cast<HumanoidForwardEnv*>(&env);
+  if (!h || !h->has_goal()) throw Error("set_goal_heading: not a humanoid_forward environment with goal: heading");
+  h->set_goal(yaw);
+}
 
 std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
                                                         std::shared_ptr<const Clip> clip,

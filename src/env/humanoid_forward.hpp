@@ -35,6 +35,16 @@ struct HumanoidForwardConfig {
   // Mocap starts fill a "links" history with the clip's poses before the start.
   ObservationConfig observations{.names = {"full_state", "egocentric"}};
   ProjectileSpec projectiles;  // seed 004's robustness test when enabled (mimic eval --robustness)
+  // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn uniformly at every start
+  // and every goal_period seconds. With Goal::Heading the forward and lateral terms give way to
+  //   goal   goal_weight * exp(-0.25 (goal_speed - d . v)^2), d the target direction, v the root's
+  //          mean horizontal velocity over the step
+  // and the observation gains "goal": cos and sin of the target direction in the heading frame.
+  enum class Goal { None, Heading };
+  Goal goal = Goal::None;
+  double goal_speed = 1.0;   // m/s along the target direction
+  double goal_period = 4.0;  // s between targets
+  double goal_weight = 1.0;
 };
 
 // The task's environment (actions: axis-angle PD targets). `clip` gives Mocap's starts and must
@@ -43,6 +53,11 @@ struct HumanoidForwardConfig {
 std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
                                                         std::shared_ptr<const Clip> clip,
                                                         const HumanoidForwardConfig& cfg = {});
+
+// The target direction (world yaw, radians) of a Goal::Heading env; tests and tools set it
+// (it holds until the next start or the next goal_period). Error for an env without that goal.
+double goal_heading(const CharacterEnv& env);
+void set_goal_heading(CharacterEnv& env, double yaw);
 
 // `s` moved to the start of the track: root over the origin facing +X, its height kept, its
 // velocities and past poses turned with it.
