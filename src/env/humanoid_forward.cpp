@@ -58,8 +58,6 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const Cli
     fail("clip '" + clip->name + "' does not fit character '" + ch.name + "'");
 }
 
-}  // namespace
-
 // CharacterEnv does not keep the action or the root's position before a step: this keeps both
 // for the control and forward terms, and the goal's target direction.
 class HumanoidForwardEnv final : public CharacterEnv {
@@ -76,10 +74,7 @@ class HumanoidForwardEnv final : public CharacterEnv {
         const double miss = cfg_.goal_speed - along;
         return cfg_.goal_weight * std::exp(-0.25 * miss * miss);
       });
-      add_observation_part("goal", 2, [this](const CharacterEnv& env, Eigen::Ref<Eigen::VectorXd> out) {
-        const double relative = goal_ - heading_angle(env.world().pose().rot[0]);
-        out[0] = std::cos(relative), out[1] = std::sin(relative);
-      });
+      add_observation_part("goal", 2, [this](const CharacterEnv&, Eigen::Ref<Eigen::VectorXd> out) { observe_goal(out); });
     } else {
       add_reward_term("forward", [this, dt, w = cfg.forward_weight, target = cfg.target_speed](const CharacterEnv& env) {
         const double vx = (env.world().root_position().x() - before_.x()) / dt;
@@ -101,8 +96,10 @@ class HumanoidForwardEnv final : public CharacterEnv {
 
   using CharacterEnv::reset;
   Eigen::VectorXd reset(std::mt19937_64& rng) override {
-    goal_rng_.seed(rng());
-    draw_goal();
+    if (has_goal()) {  // no draw otherwise: runs without a goal keep their random sequence
+      goal_rng_.seed(rng());
+      draw_goal();
+    }
     return CharacterEnv::reset(rng);
   }
 
@@ -112,12 +109,9 @@ class HumanoidForwardEnv final : public CharacterEnv {
     StepResult r = CharacterEnv::step(action);
     // A new target after each period: this step was rewarded for the old one, the next observes the new.
     const auto periods = [this](double t) { return std::floor((t + 1e-9) / cfg_.goal_period); };
-    if (cfg_.goal == HumanoidForwardConfig::Goal::Heading && periods(elapsed()) > periods(elapsed() - dt_)) {
+    if (has_goal() && periods(elapsed()) > periods(elapsed() - dt_)) {
       draw_goal();
-      const auto layout = observation_layout();
-      const ObservationSlice& g = layout.back();  // "goal", the last part
-      const double relative = goal_ - heading_angle(world().pose().rot[0]);
-      r.observation[g.offset] = std::cos(relative), r.observation[g.offset + 1] = std::sin(relative);
+      observe_goal(r.observation.tail(2));  // "goal" is the last part
     }
     return r;
   }
@@ -127,8 +121,11 @@ class HumanoidForwardEnv final : public CharacterEnv {
   void set_goal(double yaw) { goal_ = yaw; }
 
  private:
-  void draw_goal() {
-    if (cfg_.goal == HumanoidForwardConfig::Goal::Heading) goal_ = std::uniform_real_distribution<double>(-kPi, kPi)(goal_rng_);
+  void draw_goal() { goal_ = std::uniform_real_distribution<double>(-kPi, kPi)(goal_rng_); }
+  // The target's cos and sin in the character's heading frame.
+  void observe_goal(Eigen::Ref<Eigen::VectorXd> out) const {
+    const double relative = goal_ - heading_angle(world().pose().rot[0]);
+    out[0] = std::cos(relative), out[1] = std::sin(relative);
   }
 
   HumanoidForwardConfig cfg_;
@@ -138,6 +135,8 @@ class HumanoidForwardEnv final : public CharacterEnv {
   double goal_ = 0.0;
   std::mt19937_64 goal_rng_;
 };
+
+}  // namespace
 
 double goal_heading(const CharacterEnv& env) {
   const auto* h = dynamic_cast<const HumanoidForwardEnv*>(&env);
