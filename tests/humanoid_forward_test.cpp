@@ -113,12 +113,22 @@ TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
   EXPECT_NEAR(term(target->step(zero), "forward"), -0.5 * std::abs(2.0 - 3.0), 1e-9);
 }
 
-TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+namespace {
+
+// Standing starts with a target heading.
+HumanoidForwardConfig heading_goal() {
   HumanoidForwardConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.goal = HumanoidForwardConfig::Goal::Heading;
+  return cfg;
+}
+
+}  // namespace
+
+TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
+  NEED_HUMANOID();
+  const CharacterModel ch = humanoid();
+  HumanoidForwardConfig cfg = heading_goal();
   cfg.goal_speed = 1.0;
   cfg.goal_weight = 2.0;
   cfg.control_weight = 0.0;
@@ -150,9 +160,7 @@ TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
 TEST(HumanoidForward, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
   NEED_HUMANOID();
   const CharacterModel ch = humanoid();
-  HumanoidForwardConfig cfg;
-  cfg.init = Init::FixedPose;
-  cfg.goal = HumanoidForwardConfig::Goal::Heading;
+  HumanoidForwardConfig cfg = heading_goal();
   cfg.goal_period = 0.5;  // 15 control steps
   auto env = make_humanoid_forward_env(ch, nullptr, cfg);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
@@ -274,8 +282,12 @@ TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
   EXPECT_LT(max_joint_difference(env->world().pose(), starts[1]), 1e-12);
 }
 
+namespace {
+
 // The root's position in frame `f` (oldest first) of a "links" observation.
 Vec3 links_root(const Eigen::VectorXd& obs, int f, int joints) { return obs.segment(f * 7 * joints, 3); }
+
+}  // namespace
 
 TEST(HumanoidForward, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
   NEED_HUMANOID();
