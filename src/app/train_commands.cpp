@@ -74,10 +74,12 @@ void add_train_commands(CLI::App& app) {
       "train", "end-to-end training samples/s (the humanoid at seed 004 Table 1 sizes, or --config) beside the simulation-only rate");
   bench_train->add_option("--threads", args->bench.threads, "worker threads (a list: 1,2)")->delimiter(',')->capture_default_str();
   bench_train->add_option("--iterations", args->bench.iterations, "timed iterations after one warm-up")->capture_default_str()->check(CLI::PositiveNumber);
-  bench_train->add_option("--samples", args->bench.samples, "samples per iteration (PPO buffer)")->capture_default_str()->check(CLI::PositiveNumber);
-  bench_train->add_option("--envs", args->bench.envs, "environments")->capture_default_str()->check(CLI::PositiveNumber);
+  CLI::Option* samples = bench_train->add_option("--samples", args->bench.samples, "samples per iteration (PPO buffer)")
+                             ->capture_default_str()->check(CLI::PositiveNumber);
+  CLI::Option* envs = bench_train->add_option("--envs", args->bench.envs, "environments")->capture_default_str()->check(CLI::PositiveNumber);
+  // A config brings its own samples and environments: the two options would be ignored.
   bench_train->add_option("--config", args->bench_config, "time this training config instead (e.g. an imitation run, discriminator included)")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)->excludes(samples)->excludes(envs);
   bench_train->callback([args] {
     if (!args->bench_config.empty()) {
       args->bench.config_source = args->bench_config.string();

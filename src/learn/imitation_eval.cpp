@@ -77,7 +77,7 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
         ret += r.reward();
         fell |= is_failure(r.termination);
         over = r.done();
-        low = env.world().pose().root_pos.z() < 0.5 * ref.root_pos.z() ? low + 1 : 0;
+        low = env.world().root_position().z() < 0.5 * ref.root_pos.z() ? low + 1 : 0;
         lay |= low >= kLyingFrames;
       }
     }
@@ -106,7 +106,7 @@ RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act
       const StepResult r = env.step(act(frames.stacked()));
       frames.push(r.observation);
       // Down: a fall body on the ground, or the root below half its standing height (lying on cubes).
-      const bool down = env.fall_contact() || env.world().pose().root_pos.z() < low_root;
+      const bool down = env.fall_contact() || env.world().root_position().z() < low_root;
       lying = down ? lying + 1 : 0;
       if (lying >= lying_frames) {
         survived = t - lying_frames;  // the frames before it went down for good
