@@ -7,24 +7,11 @@
 #include "core/error.hpp"
 #include "env/character_env.hpp"
 #include "motion/deepmimic.hpp"
-#include "test_data.hpp"
+#include "humanoid_data.hpp"
 
 using namespace mimic;
 
 namespace {
-
-CharacterModel humanoid() {
-  const auto dir = test::shared_data() / "deepmimic/characters";
-  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-}
-
-std::shared_ptr<const Clip> motion(const CharacterModel& ch, const char* name) {
-  return std::make_shared<const Clip>(load_deepmimic_motion(test::shared_data() / "deepmimic/motions" / name, ch.skeleton));
-}
-
-#define NEED_HUMANOID()                                                  \
-  std::filesystem::path shared_;                                         \
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
 
 Eigen::Ref<const Eigen::VectorXd> part(const Eigen::VectorXd& obs, const CharacterEnv& env, const std::string& name) {
   for (const ObservationSlice& s : env.observation_layout())
@@ -35,8 +22,8 @@ Eigen::Ref<const Eigen::VectorXd> part(const Eigen::VectorXd& obs, const Charact
 }  // namespace
 
 TEST(CharacterEnv, SizesOfActionsAndObservations) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   CharacterEnvConfig cfg;
   cfg.observations.names = {"full_state", "egocentric", "links", "link_velocities"};
   cfg.observations.link_history = 3;
@@ -58,8 +45,8 @@ TEST(CharacterEnv, SizesOfActionsAndObservations) {
 }
 
 TEST(CharacterEnv, ActionsBecomeClippedPdTargets) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   CharacterEnv env(ch, CharacterEnvConfig{});
   Eigen::VectorXd a = Eigen::VectorXd::Zero(env.action_size());
   a.segment(0, 3) << 0.3, -0.2, 0.1;  // chest, the first spherical joint
@@ -78,10 +65,10 @@ TEST(CharacterEnv, ActionsBecomeClippedPdTargets) {
 }
 
 TEST(CharacterEnv, StandingWithZeroActionsRunsToTheTimeLimit) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   CharacterEnvConfig cfg;
   cfg.max_seconds = 2.0;
-  CharacterEnv env(humanoid(), cfg);
+  CharacterEnv env(test::humanoid3d(), cfg);
   std::mt19937_64 rng(1);
   env.reset(rng);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
@@ -98,8 +85,8 @@ TEST(CharacterEnv, StandingWithZeroActionsRunsToTheTimeLimit) {
 }
 
 TEST(CharacterEnv, TorsoOnTheGroundIsAFall) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   CharacterEnv env(ch, CharacterEnvConfig{});
   InitState lying{rest_pose(ch.skeleton, Vec3(0, 0, 0.1)), PoseVelocity{}, 0.0, {}};  // chest sphere touching
   lying.pose.rot[0] = axis_rotation('y', kPi / 2);  // face down
@@ -117,9 +104,9 @@ TEST(CharacterEnv, TorsoOnTheGroundIsAFall) {
 }
 
 TEST(CharacterEnv, NonCyclicReferenceEndsTheEpisode) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto kick = motion(ch, "humanoid3d_kick.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto kick = test::humanoid3d_motion(ch, "humanoid3d_kick.txt");
   CharacterEnvConfig cfg;
   cfg.early_termination = false;
   cfg.observations.names = {"phase"};
@@ -130,9 +117,9 @@ TEST(CharacterEnv, NonCyclicReferenceEndsTheEpisode) {
 }
 
 TEST(CharacterEnv, ObservationsAreInTheRightFrames) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   CharacterEnvConfig cfg;
   cfg.observations.names = {"egocentric", "links", "phase", "full_state"};
   CharacterEnv env(ch, cfg, walk);
@@ -160,9 +147,9 @@ TEST(CharacterEnv, ObservationsAreInTheRightFrames) {
 }
 
 TEST(CharacterEnv, InitStateFromClipHasTheClipsVelocities) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   const auto vel = clip_velocities(*walk);
   const InitState s = init_state_from_clip(*walk, 10 / walk->fps);
   EXPECT_TRUE(s.velocity.root_lin.isApprox(vel[10].root_lin, 1e-9));
@@ -174,8 +161,8 @@ TEST(CharacterEnv, InitStateFromClipHasTheClipsVelocities) {
 }
 
 TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   CharacterEnvConfig cfg;
   cfg.observations = {{"links"}, 2};
   CharacterEnv env(ch, cfg);
@@ -191,9 +178,9 @@ TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {
 }
 
 TEST(CharacterEnv, ActionForIsTheInverseOfTargetsFromAction) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   for (ActionMode mode : {ActionMode::AxisAngle, ActionMode::Quaternion}) {
     CharacterEnvConfig cfg;
     cfg.action_mode = mode;

@@ -11,23 +11,13 @@
 #include "core/yaml_reader.hpp"
 #include "env/env_factory.hpp"
 #include "motion/deepmimic.hpp"
-#include "test_data.hpp"
+#include "humanoid_data.hpp"
 
 using namespace mimic;
 
 namespace {
 
 using Init = HumanoidForwardConfig::Init;
-
-CharacterModel humanoid() {
-  const auto dir = test::shared_data() / "deepmimic/characters";
-  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-}
-
-std::shared_ptr<const Clip> motion(const CharacterModel& ch, const char* name) {
-  return std::make_shared<const Clip>(
-      load_deepmimic_motion(test::shared_data() / "deepmimic/motions" / name, ch.skeleton));
-}
 
 // The clip turned by `yaw` about +Z and moved by `shift`: a start away from the track's.
 std::shared_ptr<const Clip> moved(const Clip& clip, double yaw, const Vec3& shift) {
@@ -39,10 +29,6 @@ std::shared_ptr<const Clip> moved(const Clip& clip, double yaw, const Vec3& shif
   }
   return std::make_shared<const Clip>(std::move(out));
 }
-
-#define NEED_HUMANOID()          \
-  std::filesystem::path shared_; \
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
 
 double term(const StepResult& r, const std::string& name) {
   for (const auto& [n, v] : r.reward_terms)
@@ -68,8 +54,8 @@ InitState flying(const CharacterModel& ch) {
 }  // namespace
 
 TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   HumanoidForwardConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.alive_bonus = 2.0;
@@ -126,8 +112,8 @@ HumanoidForwardConfig heading_goal() {
 }  // namespace
 
 TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   HumanoidForwardConfig cfg = heading_goal();
   cfg.goal_speed = 1.0;
   cfg.goal_weight = 2.0;
@@ -158,8 +144,8 @@ TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
 }
 
 TEST(HumanoidForward, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   HumanoidForwardConfig cfg = heading_goal();
   cfg.goal_period = 0.5;  // 15 control steps
   auto env = make_humanoid_forward_env(ch, nullptr, cfg);
@@ -196,10 +182,10 @@ TEST(HumanoidForward, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
 }
 
 TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   auto env =
-      make_humanoid_forward_env(ch, motion(ch, "humanoid3d_kick.txt"), HumanoidForwardConfig{});
+      make_humanoid_forward_env(ch, test::humanoid3d_motion(ch, "humanoid3d_kick.txt"), HumanoidForwardConfig{});
   EXPECT_EQ(env->reference(), nullptr);  // a non-cyclic clip cannot end episodes (no ClipEnd)
   EXPECT_EQ(env->action_size(), 28);
   ASSERT_EQ(env->observation_layout().size(), 2u);
@@ -221,7 +207,7 @@ TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
 // mimic eval --robustness rebuilds a run's env with projectiles: a GAIL or ICCGAN run on this
 // task must accept them.
 TEST(HumanoidForward, LaunchesProjectilesWhenTheConfigAsks) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   const YamlReader reader("test.yaml");
   const EnvFactory f = make_env_factory(reader.parse("{name: humanoid_forward, init: fixed, projectiles: {enabled: true, mass: 5}}", "bad"), reader);
   auto env = f();
@@ -235,9 +221,9 @@ TEST(HumanoidForward, LaunchesProjectilesWhenTheConfigAsks) {
 }
 
 TEST(HumanoidForward, PlacingAtTheTrackStartKeepsTheMotion) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = motion(ch, "humanoid3d_walk.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   const auto turned = moved(*walk, 2.0, Vec3(5, -3, 0));
   const InitState a = place_at_track_start(init_state_from_clip(*walk, 0.4));
   const InitState b = place_at_track_start(init_state_from_clip(*turned, 0.4));
@@ -256,10 +242,10 @@ TEST(HumanoidForward, PlacingAtTheTrackStartKeepsTheMotion) {
 }
 
 TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   // A clip facing elsewhere and away from the origin: starts must still be at the track's start.
-  const auto walk = moved(*motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
+  const auto walk = moved(*test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
   auto env = make_humanoid_forward_env(ch, walk, HumanoidForwardConfig{});
   std::vector<Pose> starts;
   for (const std::uint64_t seed : {1u, 2u, 3u}) {
@@ -290,9 +276,9 @@ Vec3 links_root(const Eigen::VectorXd& obs, int f, int joints) { return obs.segm
 }  // namespace
 
 TEST(HumanoidForward, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto walk = moved(*motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = moved(*test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
   HumanoidForwardConfig cfg;
   cfg.init_noise = 0.0;
   cfg.observations = ObservationConfig{.names = {"links"}, .link_history = 5};
@@ -318,12 +304,12 @@ TEST(HumanoidForward, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
 }
 
 TEST(HumanoidForward, FixedPoseStartsAreTheRestPoseUpToNoise) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   HumanoidForwardConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.init_noise = 0.02;
-  auto env = make_humanoid_forward_env(ch, motion(ch, "humanoid3d_walk.txt"), cfg);
+  auto env = make_humanoid_forward_env(ch, test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), cfg);
   const Pose rest = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3));
   std::vector<Pose> starts;
   for (const std::uint64_t seed : {1u, 2u}) {
@@ -362,9 +348,9 @@ int run_zero_actions(CharacterEnv& env, StepResult& last) {
 }  // namespace
 
 TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
-  const auto kick = motion(ch, "humanoid3d_kick.txt");  // non-cyclic, 1.53 s
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto kick = test::humanoid3d_motion(ch, "humanoid3d_kick.txt");  // non-cyclic, 1.53 s
   HumanoidForwardConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.max_seconds = 2.0;
@@ -381,7 +367,7 @@ TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
   // actions topple a walking pose only after about 1 s).
   cfg.init = Init::Mocap;
   cfg.max_seconds = 0.5;
-  auto mocap = make_humanoid_forward_env(ch, motion(ch, "humanoid3d_walk.txt"), cfg);
+  auto mocap = make_humanoid_forward_env(ch, test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), cfg);
   for (const std::uint64_t seed : {1u, 2u}) {
     std::mt19937_64 draw(seed);
     mocap->reset(draw);
@@ -391,8 +377,8 @@ TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
 }
 
 TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {
-  NEED_HUMANOID();
-  const CharacterModel ch = humanoid();
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   HumanoidForwardConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.max_seconds = 3.0;

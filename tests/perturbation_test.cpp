@@ -11,7 +11,7 @@
 #include "env/character_env.hpp"
 #include "motion/builtin.hpp"
 #include "motion/deepmimic.hpp"
-#include "test_data.hpp"
+#include "humanoid_data.hpp"
 
 using namespace mimic;
 
@@ -22,16 +22,9 @@ const CharacterModel& builtin() {
   return ch;
 }
 
-#define NEED_HUMANOID()                                                  \
-  std::filesystem::path shared_;                                         \
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_)
-
 // DeepMimic's humanoid: it stands with zero actions (PD targets = its rest pose).
 const CharacterModel& humanoid() {
-  static const CharacterModel ch = [] {
-    const auto dir = test::shared_data() / "deepmimic/characters";
-    return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-  }();
+  static const CharacterModel ch = test::humanoid3d();
   return ch;
 }
 
@@ -83,7 +76,7 @@ TEST(Push, ImpulseIsForceTimesDuration) {
 }
 
 TEST(Push, SidewaysPushKnocksAStandingCharacterOver) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   CharacterEnvConfig cfg;
   cfg.early_termination = false;
   CharacterEnv env(humanoid(), cfg);
@@ -100,7 +93,7 @@ TEST(Push, SidewaysPushKnocksAStandingCharacterOver) {
 }
 
 TEST(Projectile, FliesStraightAtTheSetSpeedFromTheSetDistanceAndHitsTheChest) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   const CharacterModel& ch = humanoid();
   ProjectileSpec spec;  // seed 004: 0.2 m cubes at 0.2 m/s
   spec.enabled = true;
@@ -176,7 +169,7 @@ TEST(Projectile, AMissFallsAndIsParkedAfterItsLinger) {
 }
 
 TEST(Projectile, EveryFrameProtocolRecyclesAFixedPool) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   CharacterEnvConfig cfg;
   cfg.early_termination = false;
   cfg.projectiles.enabled = true;
@@ -207,7 +200,7 @@ TEST(Projectile, EveryFrameProtocolRecyclesAFixedPool) {
 }
 
 TEST(Projectile, HeavyCubesToppleAStandingHumanoidSoonerThanLightOnes) {
-  NEED_HUMANOID();
+  MIMIC_NEED_HUMANOID();
   const CharacterModel& ch = humanoid();
   // Frames until the root drops below 0.5 m (lying, possibly on cubes) or a fall, of 120.
   auto frames_survived = [&](double mass, std::uint64_t seed) {

@@ -9,16 +9,11 @@
 #include "motion/deepmimic.hpp"
 #include "sim/character_model.hpp"
 #include "sim/world.hpp"
-#include "test_data.hpp"
+#include "humanoid_data.hpp"
 
 using namespace mimic;
 
 namespace {
-
-CharacterModel humanoid() {
-  const auto dir = test::shared_data() / "deepmimic/characters";
-  return CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-}
 
 // Lowest and highest z over a set of the model's geoms (world frame, exact for each shape).
 std::pair<double, double> geom_z_range(const World& w, const std::vector<std::string>& only = {}) {
@@ -54,7 +49,7 @@ Clip walk_clip(const CharacterModel& ch) {
 TEST(SimCharacter, MassAndStandingHeightMatchTheFile) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", p);
-  const CharacterModel ch = humanoid();
+  const CharacterModel ch = test::humanoid3d();
   World w(ch);
   EXPECT_NEAR(mj_getTotalmass(w.model()), 45.0, 0.45);  // the file's masses sum to 45 kg
   EXPECT_NEAR(ch.total_mass(), 45.0, 1e-9);
@@ -69,7 +64,7 @@ TEST(SimCharacter, MassAndStandingHeightMatchTheFile) {
 TEST(SimCharacter, MjcfIsWrittenAndNamesEveryJoint) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", p);
-  const std::string xml = build_mjcf(humanoid());
+  const std::string xml = build_mjcf(test::humanoid3d());
   for (const char* s : {"<freejoint name=\"root\"/>", "name=\"right_knee\" type=\"hinge\"", "name=\"chest\" type=\"ball\" damping=\"100\""})
     EXPECT_NE(xml.find(s), std::string::npos) << s;
 }
@@ -77,7 +72,7 @@ TEST(SimCharacter, MjcfIsWrittenAndNamesEveryJoint) {
 TEST(SimWorld, SetStateReproducesClipKinematicsWithin1mm) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
-  const CharacterModel ch = humanoid();
+  const CharacterModel ch = test::humanoid3d();
   const Clip walk = walk_clip(ch);
   World w(ch);
   for (int f = 0; f < walk.num_frames(); f += 5) {
@@ -108,7 +103,7 @@ TEST(SimWorld, SetStateReproducesClipKinematicsWithin1mm) {
 TEST(SimWorld, KinematicWalkKeepsFeetAtTheGround) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
-  const CharacterModel ch = humanoid();
+  const CharacterModel ch = test::humanoid3d();
   const Clip walk = walk_clip(ch);
   World w(ch);
   double lowest = 1e9;
@@ -126,7 +121,7 @@ class SimStand : public ::testing::TestWithParam<double> {};
 TEST_P(SimStand, ZeroActionsFromTheFirstPoseStandFor2Seconds) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
-  const CharacterModel ch = humanoid();
+  const CharacterModel ch = test::humanoid3d();
   const Clip walk = walk_clip(ch);
   World w(ch, SimConfig{GetParam(), 30.0});
   w.set_state(walk.frames[0]);
@@ -152,7 +147,7 @@ TEST_P(SimStand, ZeroActionsFromTheFirstPoseStandFor2Seconds) {
 TEST_P(SimStand, ServosHoldAMidStridePoseStably) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
-  const CharacterModel ch = humanoid();
+  const CharacterModel ch = test::humanoid3d();
   const Clip walk = walk_clip(ch);
   World w(ch, SimConfig{GetParam(), 30.0});
   w.set_state(walk.frames[0]);
@@ -250,7 +245,7 @@ TEST(SimCharacter, DogMatchesItsFileAndTrotsOnTheFloor) {
 TEST(SimWorld, WritePosePlacesAGhostAsSetStateWouldAndLeavesTheWorldAlone) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
-  const CharacterModel ch = humanoid();
+  const CharacterModel ch = test::humanoid3d();
   const Clip walk = walk_clip(ch);
   World w(ch);
   w.set_state(walk.frames[3]);

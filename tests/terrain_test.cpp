@@ -10,7 +10,7 @@
 #include "env/character_env.hpp"
 #include "motion/builtin.hpp"
 #include "motion/deepmimic.hpp"
-#include "test_data.hpp"
+#include "humanoid_data.hpp"
 
 using namespace mimic;
 
@@ -166,10 +166,8 @@ TEST(Terrain, RejectsBadSpecs) {
 
 TEST(TerrainEnv, CharacterStartsStandingOnEveryKind) {
   // DeepMimic's humanoid stands with zero actions; on every kind it starts on flat ground.
-  std::filesystem::path shared_;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", shared_);
-  const auto dir = test::shared_data() / "deepmimic/characters";
-  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
   for (TerrainKind kind : {TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField}) {
     CharacterEnvConfig cfg;
     cfg.terrain = spec_of(kind);

@@ -277,11 +277,9 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
 }
 
 TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
-  std::filesystem::path dir;
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", dir);
-  dir = dir.parent_path();
-  const CharacterModel ch = CharacterModel::from_deepmimic(dir / "humanoid3d.txt", dir / "humanoid3d_ctrl.txt");
-  const auto walk = std::make_shared<const Clip>(load_deepmimic_motion(dir.parent_path() / "motions/humanoid3d_walk.txt", ch.skeleton));
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   HumanoidForwardConfig cfg;
   cfg.init_noise = 0.0;
   auto env = make_humanoid_forward_env(ch, walk, cfg);
@@ -303,7 +301,7 @@ TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   // A clip of another body is refused.
   std::filesystem::path dog_dir;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/dog3d.txt", dog_dir);
-  const Clip dog = load_motion(dir.parent_path() / "motions/dog3d_trot.txt", LoadOptions{});
+  const Clip dog = load_motion(test::shared_data() / "deepmimic/motions/dog3d_trot.txt", LoadOptions{});
   EXPECT_NE(error_of([&] { clip_demonstrations(*env, dog); }).find("does not fit the environment's character"), std::string::npos);
 }
 
