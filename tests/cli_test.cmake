@@ -159,7 +159,10 @@ expect_in("${gail_latency}" "\"discriminators\": [{\"source\": \"gail\", \"us\":
 if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   file(WRITE ${OUT}/humanoid.yaml "env: {name: humanoid_forward, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: ${DATA}/deepmimic/motions/humanoid3d_walk.txt}\n")
   run_ok(record-clip ${OUT}/humanoid.yaml --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt --passes 2 -o ${OUT}/walk_demos.csv)
-  expect_in("${LAST_OUT}" "transitions of humanoid3d_walk (2 passes), 99 observation values")
+  expect_in("${LAST_OUT}" "transitions of humanoid3d_walk (2 passes each), 99 observation values")
+  # Several clips in one file (integrated learning): each clip's passes are episodes of their own.
+  run_ok(record-clip ${OUT}/humanoid.yaml --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --passes 2 -o ${OUT}/walk_run_demos.csv)
+  expect_in("${LAST_OUT}" "transitions of humanoid3d_walk, humanoid3d_run (2 passes each)")
   run_fails("its environment has no simulated character" record-clip ${OUT}/walker.yaml --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt -o ${OUT}/x.csv)
   # Tracking: a one-iteration run, evaluated against its clip (imitation error, normalised return).
   file(WRITE ${OUT}/tracking.yaml "iterations: 1\nenv: {name: tracking, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: ${DATA}/deepmimic/motions/humanoid3d_walk.txt, max_seconds: 2}\ncollect: {envs: 2, samples: 128}\npolicy: {hidden: [16]}\nvalue: {hidden: [16]}\n")

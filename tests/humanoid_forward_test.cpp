@@ -268,6 +268,69 @@ TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
   EXPECT_LT(max_joint_difference(env->world().pose(), starts[1]), 1e-12);
 }
 
+// Seed 004's integrated learning: starts from every clip of a collection, each in proportion to
+// its duration (a pose drawn uniformly from all their frames).
+TEST(HumanoidForward, StartsFromSeveralClipsInProportionToTheirDurations) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const int elbow = ch.skeleton.find("right_elbow");
+  ASSERT_GE(elbow, 0);
+  // Two held poses told apart by the right elbow: 1 s at 0.3 rad, 3 s at 1.2 rad.
+  auto held = [&](double angle, double seconds) {
+    Clip c;
+    c.name = "held_" + std::to_string(angle);
+    c.skeleton = ch.skeleton;
+    Pose p = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.01));
+    p.rot[static_cast<std::size_t>(elbow)] = Quat(Eigen::AngleAxisd(angle, ch.skeleton.joints[static_cast<std::size_t>(elbow)].axis));
+    c.frames.assign(static_cast<std::size_t>(seconds * c.fps) + 1, p);
+    return std::make_shared<const Clip>(std::move(c));
+  };
+  HumanoidForwardConfig cfg;
+  cfg.init_noise = 0.0;
+  auto env = make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), held(1.2, 3.0)}, cfg);
+  std::mt19937_64 rng(5);
+  int from_long = 0, from_short = 0;
+  const int starts = 400;
+  for (int i = 0; i < starts; ++i) {
+    env->reset(rng);
+    const double angle = revolute_angle(ch.skeleton.joints[static_cast<std::size_t>(elbow)], env->world().pose().rot[static_cast<std::size_t>(elbow)]);
+    if (std::abs(angle - 1.2) < 1e-6) ++from_long;
+    if (std::abs(angle - 0.3) < 1e-6) ++from_short;
+  }
+  EXPECT_EQ(from_long + from_short, starts);
+  EXPECT_NEAR(from_long / double(starts), 0.75, 0.06);  // 3 s of 4; binomial sd 0.022
+  // Every clip must fit; an empty collection cannot start Mocap episodes.
+  EXPECT_THROW(make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{}, cfg), Error);
+  Clip other = *held(0.3, 1.0);
+  other.skeleton.joints.pop_back();
+  for (Pose& p : other.frames) p.rot.pop_back();
+  EXPECT_THROW(make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), std::make_shared<const Clip>(other)}, cfg),
+               Error);
+}
+
+TEST(HumanoidForward, TheConfigTakesOneClipOrAList) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader r("test.yaml");
+  auto observation_size = [&](const std::string& env_yaml) {
+    const EnvFactory f = make_env_factory(r.parse(env_yaml, ""), r);
+    return f()->observation_size();
+  };
+  EXPECT_EQ(observation_size("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt]}"),
+            observation_size("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt}"));
+  auto error = [&](const std::string& env_yaml) {
+    try {
+      (void)make_env_factory(r.parse(env_yaml, ""), r);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error("{name: humanoid_forward, clip: []}").find("'env.clip': an empty list"), std::string::npos);
+  // Every clip of the list is loaded: a missing second one is named.
+  EXPECT_NE(error("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, /nonexistent/run.txt]}").find("/nonexistent/run.txt not found"),
+            std::string::npos);
+}
+
 namespace {
 
 // The root's position in frame `f` (oldest first) of a "links" observation.

@@ -41,14 +41,17 @@ void add_imitation_commands(CLI::App& app) {
   });
 
   struct ClipArgs {
-    std::filesystem::path config, clip, character, out;
+    std::filesystem::path config, character, out;
+    std::vector<std::filesystem::path> clips;
     int passes = 4;
   };
   auto clip_args = std::make_shared<ClipArgs>();
   CLI::App* rc = app.add_subcommand("record-clip", "demonstrations from a motion clip: the environment's observations of its states (no actions)");
   rc->add_option("config", clip_args->config, "training config whose env is a character environment (e.g. humanoid_forward)")
       ->required()->check(CLI::ExistingFile);
-  rc->add_option("--clip", clip_args->clip, "motion clip (.mclip, .bvh, .amc, DeepMimic .txt)")->required()->check(CLI::ExistingFile);
+  rc->add_option("--clip", clip_args->clips, "motion clip (.mclip, .bvh, .amc, DeepMimic .txt); repeat it for several clips in one file")
+      ->required()
+      ->check(CLI::ExistingFile);
   rc->add_option("--character", clip_args->character, "DeepMimic character file of a .txt clip (default: found by its name)");
   rc->add_option("--passes", clip_args->passes, "passes over the clip, offset by a fraction of a control step")->capture_default_str()->check(CLI::PositiveNumber);
   rc->add_option("-o,--output", clip_args->out, "output .csv")->required();
@@ -60,10 +63,15 @@ void add_imitation_commands(CLI::App& app) {
     if (!character_env) throw Error(clip_args->config.string() + ": its environment has no simulated character to pose from a clip");
     LoadOptions load;
     load.character = clip_args->character;
-    const Clip clip = load_motion(clip_args->clip, load);
-    const Demonstrations d = clip_demonstrations(*character_env, clip, clip_args->passes);
+    std::vector<Clip> clips;
+    std::string names;
+    for (const auto& path : clip_args->clips) {
+      clips.push_back(load_motion(path, load));
+      names += (names.empty() ? "" : ", ") + clips.back().name;
+    }
+    const Demonstrations d = clip_demonstrations(*character_env, clips, clip_args->passes);
     write_demonstrations(clip_args->out, d);
-    spdlog::info("wrote {}: {} transitions of {} ({} passes), {} observation values", clip_args->out.string(), d.size(), clip.name,
+    spdlog::info("wrote {}: {} transitions of {} ({} passes each), {} observation values", clip_args->out.string(), d.size(), names,
                  clip_args->passes, d.obs.cols());
   });
 

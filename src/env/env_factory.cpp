@@ -77,7 +77,11 @@ ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader,
 EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   HumanoidForwardConfig c;
   const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
-  const std::string clip_file = s.text("clip", "deepmimic/motions/humanoid3d_walk.txt");
+  // One clip, or a list of them for starts from all (seed 004's integrated learning).
+  const std::vector<std::string> clip_files = s.child("clip").IsSequence()
+                                                  ? s.texts("clip", {})
+                                                  : std::vector<std::string>{s.text("clip", "deepmimic/motions/humanoid3d_walk.txt")};
+  if (clip_files.empty()) reader.fail(s.child("clip"), "'env.clip': an empty list (give one clip or several)");
   c.init = s.choice("init", "mocap", {"mocap", "fixed"}) == "mocap" ? HumanoidForwardConfig::Init::Mocap : HumanoidForwardConfig::Init::FixedPose;
   c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
   c.alive_bonus = s.number("alive_bonus", c.alive_bonus, 0, 1e6);
@@ -94,8 +98,9 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.goal_weight = s.number("goal_weight", c.goal_weight, 0, 1e6);
   c.projectiles = read_projectiles(s, reader, "env.projectiles");
   auto ch = load_character(character);
-  auto clip = load_clip(clip_file, character);
-  return [ch, clip, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clip, c)); };
+  std::vector<std::shared_ptr<const Clip>> clips;
+  for (const std::string& f : clip_files) clips.push_back(load_clip(f, character));
+  return [ch, clips, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clips, c)); };
 }
 
 EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {

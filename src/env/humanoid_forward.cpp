@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -42,7 +44,7 @@ void perturb_joints(Pose& p, const Skeleton& sk, double noise, std::mt19937_64& 
   }
 }
 
-void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const Clip* clip) {
+void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const std::vector<std::shared_ptr<const Clip>>& clips) {
   auto fail = [](const std::string& what) { throw Error("humanoid_forward: " + what); };
   const std::pair<const char*, double> values[] = {
       {"alive_bonus", cfg.alive_bonus},       {"forward_weight", cfg.forward_weight},
@@ -52,10 +54,27 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const Cli
     if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
   if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_period > 0) || !std::isfinite(cfg.goal_period))
     fail("goal_speed and goal_weight must be non-negative and goal_period positive");
-  if (cfg.init == HumanoidForwardConfig::Init::Mocap && !clip)
+  if (cfg.init == HumanoidForwardConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
-  if (clip && clip->skeleton.num_joints() != ch.skeleton.num_joints())
-    fail("clip '" + clip->name + "' does not fit character '" + ch.name + "'");
+  for (const auto& clip : clips) {
+    if (!clip) fail("a clip of the list is missing");
+    if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
+      fail("clip '" + clip->name + "' does not fit character '" + ch.name + "'");
+    if (!(clip->duration() > 0)) fail("clip '" + clip->name + "' has no duration to start from");
+  }
+}
+
+// A start time uniform over all clips' frames together (seed 004's integrated learning draws
+// poses uniformly from the collection), as the clip and the time on it.
+std::pair<const Clip*, double> draw_clip_time(const std::vector<std::shared_ptr<const Clip>>& clips, std::mt19937_64& rng) {
+  double total = 0;
+  for (const auto& c : clips) total += c->duration();
+  double t = std::uniform_real_distribution<double>(0.0, total)(rng);
+  for (const auto& c : clips) {
+    if (t < c->duration()) return {c.get(), t};
+    t -= c->duration();
+  }
+  return {clips.back().get(), clips.back()->duration()};  // t == total after rounding
 }
 
 // CharacterEnv does not keep the action or the root's position before a step: this keeps both
@@ -153,20 +172,28 @@ void set_goal_heading(CharacterEnv& env, double yaw) {
 std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
                                                         std::shared_ptr<const Clip> clip,
                                                         const HumanoidForwardConfig& cfg) {
-  check(cfg, ch, clip.get());
+  std::vector<std::shared_ptr<const Clip>> clips;
+  if (clip) clips.push_back(std::move(clip));
+  return make_humanoid_forward_env(ch, std::move(clips), cfg);
+}
+
+std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
+                                                        std::vector<std::shared_ptr<const Clip>> clips,
+                                                        const HumanoidForwardConfig& cfg) {
+  check(cfg, ch, clips);
   CharacterEnvConfig env_cfg;
   env_cfg.observations = cfg.observations;
   env_cfg.max_seconds = cfg.max_seconds;
   env_cfg.projectiles = cfg.projectiles;
-  // The clip is not the env's reference: it only supplies starts and must not end episodes.
+  // The clips are not the env's reference: they only supply starts and must not end episodes.
   auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
   const Skeleton sk = ch.skeleton;
   const double noise = cfg.init_noise;
   if (cfg.init == HumanoidForwardConfig::Init::Mocap) {
     const CharacterEnv* self = env.get();  // the sampler lives in the env it reads
-    env->set_init_sampler([clip, sk, noise, self](std::mt19937_64& rng) {
-      std::uniform_real_distribution<double> when(0.0, clip->duration());
-      InitState s = place_at_track_start(self->state_on_clip(*clip, when(rng)));
+    env->set_init_sampler([clips, sk, noise, self](std::mt19937_64& rng) {
+      const auto [clip, when] = draw_clip_time(clips, rng);
+      InitState s = place_at_track_start(self->state_on_clip(*clip, when));
       s.time = 0.0;
       perturb_joints(s.pose, sk, noise, rng);
       return s;

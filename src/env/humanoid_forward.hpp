@@ -12,6 +12,7 @@
 // The experiment is the start of an episode: motion-capture poses (a random time on a clip) versus
 // a fixed engineered pose, both with a little noise on the joints.
 #include <memory>
+#include <vector>
 
 #include "env/character_env.hpp"
 
@@ -52,6 +53,11 @@ struct HumanoidForwardConfig {
 // a missing or unfitting clip or a negative weight, noise or speed.
 std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
                                                         std::shared_ptr<const Clip> clip,
+                                                        const HumanoidForwardConfig& cfg = {});
+// Mocap starts from several clips (seed 004's integrated learning): a start time uniform over
+// all their frames together, so each clip starts in proportion to its duration.
+std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
+                                                        std::vector<std::shared_ptr<const Clip>> clips,
                                                         const HumanoidForwardConfig& cfg = {});
 
 // The target direction (world yaw, radians) of a Goal::Heading env; tests and tools set it

@@ -36,4 +36,11 @@ Demonstrations clip_demonstrations(CharacterEnv& env, const Clip& clip, int pass
   return d;
 }
 
+Demonstrations clip_demonstrations(CharacterEnv& env, const std::vector<Clip>& clips, int passes) {
+  if (clips.empty()) throw Error("clip demonstrations: no clip given");
+  Demonstrations d;
+  for (const Clip& clip : clips) d.append(clip_demonstrations(env, clip, passes));
+  return d;
+}
+
 }  // namespace mimic

@@ -13,5 +13,7 @@ namespace mimic {
 // apart, so they sample different instants). Error when the clip does not fit the character or is
 // shorter than two control steps.
 Demonstrations clip_demonstrations(CharacterEnv& env, const Clip& clip, int passes = 1);
+// Several clips in one set (seed 004's integrated learning): each clip's passes, one after another.
+Demonstrations clip_demonstrations(CharacterEnv& env, const std::vector<Clip>& clips, int passes = 1);
 
 }  // namespace mimic

@@ -15,6 +15,32 @@ namespace mimic {
 
 int Demonstrations::episodes() const { return static_cast<int>(std::set<int>(episode.begin(), episode.end()).size()); }
 
+void Demonstrations::append(const Demonstrations& more) {
+  if (size() == 0 && obs.cols() == 0) {
+    *this = more;
+    return;
+  }
+  if (more.obs.cols() != obs.cols() || more.action.cols() != action.cols() || more.next_obs.cols() != next_obs.cols())
+    throw Error("demonstrations of " + more.source + " (" + std::to_string(more.obs.cols()) + " observation and " +
+                std::to_string(more.action.cols()) + " action values) do not match those of " + source + " (" +
+                std::to_string(obs.cols()) + " and " + std::to_string(action.cols()) + ")");
+  const auto same_slice = [](const ObservationSlice& a, const ObservationSlice& b) {
+    return a.name == b.name && a.offset == b.offset && a.size == b.size;
+  };
+  if (!std::equal(layout.begin(), layout.end(), more.layout.begin(), more.layout.end(), same_slice)) throw Error("demonstrations of " + more.source + " name other observation parts than those of " + source);
+  const int offset = episode.empty() ? 0 : *std::max_element(episode.begin(), episode.end()) + 1;
+  const Eigen::Index n = obs.rows();
+  obs.conservativeResize(n + more.obs.rows(), Eigen::NoChange);
+  action.conservativeResize(n + more.obs.rows(), Eigen::NoChange);
+  next_obs.conservativeResize(n + more.obs.rows(), Eigen::NoChange);
+  obs.bottomRows(more.obs.rows()) = more.obs;
+  action.bottomRows(more.obs.rows()) = more.action;
+  next_obs.bottomRows(more.obs.rows()) = more.next_obs;
+  const int first = more.episode.empty() ? 0 : *std::min_element(more.episode.begin(), more.episode.end());
+  for (int e : more.episode) episode.push_back(offset + e - first);
+  source += " + " + more.source;
+}
+
 Demonstrations Demonstrations::first_episodes(int n) const {
   std::vector<int> order;  // episode tags in order of first appearance
   for (int e : episode)

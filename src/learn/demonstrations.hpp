@@ -24,6 +24,9 @@ struct Demonstrations {
   int episodes() const;  // distinct episode tags
   // The samples of the first `n` episodes (in order of first appearance); all if fewer.
   Demonstrations first_episodes(int n) const;
+  // `more`'s samples after these, its episodes renumbered after this set's (several clips in one
+  // file). Error when the column counts or the layouts differ.
+  void append(const Demonstrations& more);
 };
 
 // Errors (ParseError) name the file, the line and the problem: a missing column group, sizes

@@ -91,6 +91,26 @@ TEST(Demonstrations, RoundTripAndFirstEpisodes) {
   EXPECT_EQ(two.obs.row(0), back.obs.row(0));
 }
 
+TEST(Demonstrations, AppendingKeepsEpisodesApartAndRefusesOtherColumns) {
+  Demonstrations a = oscillator_expert(2), b = oscillator_expert(3);
+  const Demonstrations b_copy = b;
+  a.append(b);
+  EXPECT_EQ(a.size(), 5 * test::OscillatorEnv::kLength);
+  EXPECT_EQ(a.episodes(), 5);  // b's episodes 0..2 follow a's 0..1 as 2..4
+  EXPECT_EQ(a.episode.back(), 4);
+  EXPECT_EQ(a.obs.bottomRows(b.size()), b_copy.obs);
+  EXPECT_EQ(a.next_obs.row(0), oscillator_expert(2).next_obs.row(0));
+  Demonstrations empty;
+  empty.append(b);  // into nothing: a copy
+  EXPECT_EQ(empty.size(), b.size());
+  Demonstrations narrow = b;
+  narrow.obs.conservativeResize(Eigen::NoChange, 1);
+  narrow.next_obs.conservativeResize(Eigen::NoChange, 1);
+  narrow.source = "narrow.csv";
+  EXPECT_NE(error_of([&] { a.append(narrow); }).find("do not match"), std::string::npos);
+  EXPECT_EQ(a.size(), 5 * test::OscillatorEnv::kLength);  // left as it was
+}
+
 TEST(Demonstrations, MalformedFilesNameTheFileLineAndProblem) {
   const auto dir = test::temp_dir("demos_malformed");
   write(dir / "header.csv", "iteration,obs_0\n1,2\n");
@@ -298,6 +318,13 @@ TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   const auto tmp = test::temp_dir("clip_demos");
   write_demonstrations(tmp / "walk.csv", d);
   EXPECT_EQ(read_demonstrations(tmp / "walk.csv").action.cols(), 0);
+  // Several clips in one set: each clip's passes, as episodes of their own.
+  const auto run = test::humanoid3d_motion(ch, "humanoid3d_run.txt");
+  const Demonstrations both = clip_demonstrations(*env, std::vector<Clip>{*walk, *run}, 2);
+  const Demonstrations run_only = clip_demonstrations(*env, *run, 2);
+  EXPECT_EQ(both.size(), d.size() + run_only.size());
+  EXPECT_EQ(both.episodes(), 4);
+  EXPECT_TRUE(both.obs.bottomRows(run_only.size()).isApprox(run_only.obs, 1e-12));
   // A clip of another body is refused.
   std::filesystem::path dog_dir;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/dog3d.txt", dog_dir);
