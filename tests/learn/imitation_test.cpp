@@ -296,6 +296,50 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
   EXPECT_GT(reward_late, reward_early + 0.05);
 }
 
+// Seed 000's context learnt, not only plumbed: one policy, two behaviours (the orbit of radius 1
+// and the orbit of radius 2) from two expert files, the one-hot context choosing between them.
+TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
+  const auto dir = test::temp_dir("gail_contexts");
+  const Demonstrations small = oscillator_expert(20);
+  Demonstrations large = small;  // the same dynamics at twice the radius: force -x still orbits
+  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", small);
+  write_demonstrations(dir / "large.csv", large);
+  TrainOptions o;
+  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  const int iterations = 120;
+  std::string text = gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1");
+  text.replace(text.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
+               "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]");
+  Trainer t(parse_train_config(text, "ctx.yaml"), o);
+  // Mean radius over the second half of episodes started on the unit circle, context held.
+  auto radius_in = [&](int context) {
+    ContextEnv env(std::make_unique<test::OscillatorEnv>(), 2, 0);
+    std::mt19937_64 rng(3);
+    double sum = 0;
+    int n = 0;
+    for (int e = 0; e < 10; ++e) {
+      Eigen::VectorXd obs = env.reset(rng);
+      env.set_context(context);
+      obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
+      for (int k = 0; k < test::OscillatorEnv::kLength; ++k) {
+        const StepResult r = env.step(t.act(obs));
+        obs = r.observation;
+        if (k >= test::OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
+      }
+    }
+    return sum / n;
+  };
+  const double small_before = radius_in(0), large_before = radius_in(1);
+  for (int i = 0; i < iterations; ++i) t.iterate();
+  const double small_after = radius_in(0), large_after = radius_in(1);
+  std::cout << "radius with context 0 (expert 1): " << small_before << " -> " << small_after << "; with context 1 (expert 2): " << large_before
+            << " -> " << large_after << "\n";
+  EXPECT_NEAR(small_after, 1.0, 0.3);
+  EXPECT_NEAR(large_after, 2.0, 0.4);
+  EXPECT_GT(large_after - small_after, 0.6);
+}
+
 TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
