@@ -163,6 +163,10 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   # Several clips in one file (integrated learning): each clip's passes are episodes of their own.
   run_ok(record-clip ${OUT}/humanoid.yaml --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --passes 2 -o ${OUT}/walk_run_demos.csv)
   expect_in("${LAST_OUT}" "transitions of humanoid3d_walk, humanoid3d_run (2 passes each)")
+  # A behaviour-context env records through the env it wraps: no context values in the file.
+  file(WRITE ${OUT}/humanoid_context.yaml "env: {name: humanoid_forward, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: ${DATA}/deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, period: 150}}\n")
+  run_ok(record-clip ${OUT}/humanoid_context.yaml --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt --passes 1 -o ${OUT}/walk_context_demos.csv)
+  expect_in("${LAST_OUT}" "(1 pass each), 99 observation values")
   run_fails("its environment has no simulated character" record-clip ${OUT}/walker.yaml --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt -o ${OUT}/x.csv)
   # Tracking: a one-iteration run, evaluated against its clip (imitation error, normalised return).
   file(WRITE ${OUT}/tracking.yaml "iterations: 1\nenv: {name: tracking, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: ${DATA}/deepmimic/motions/humanoid3d_walk.txt, max_seconds: 2}\ncollect: {envs: 2, samples: 128}\npolicy: {hidden: [16]}\nvalue: {hidden: [16]}\n")

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "core/file_io.hpp"
+#include "env/context_env.hpp"
 #include "env/env_factory.hpp"
 #include "learn/clip_demonstrations.hpp"
 #include "learn/trainer.hpp"
@@ -59,7 +60,10 @@ void add_imitation_commands(CLI::App& app) {
     const TrainConfig cfg = load_train_config(clip_args->config);
     if (!cfg.env.IsDefined()) throw Error(clip_args->config.string() + ": no 'env' section");
     const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
-    auto* character_env = dynamic_cast<CharacterEnv*>(env.get());
+    // A behaviour context is not part of a clip's demonstrations: the discriminator appends each
+    // file's own one-hot (imitation.md), so a context env records through the env it wraps.
+    auto* context_env = dynamic_cast<ContextEnv*>(env.get());
+    auto* character_env = dynamic_cast<CharacterEnv*>(context_env ? &context_env->inner() : env.get());
     if (!character_env) throw Error(clip_args->config.string() + ": its environment has no simulated character to pose from a clip");
     LoadOptions load;
     load.character = clip_args->character;
@@ -71,8 +75,8 @@ void add_imitation_commands(CLI::App& app) {
     }
     const Demonstrations d = clip_demonstrations(*character_env, clips, clip_args->passes);
     write_demonstrations(clip_args->out, d);
-    spdlog::info("wrote {}: {} transitions of {} ({} passes each), {} observation values", clip_args->out.string(), d.size(), names,
-                 clip_args->passes, d.obs.cols());
+    spdlog::info("wrote {}: {} transitions of {} ({} pass{} each), {} observation values", clip_args->out.string(), d.size(), names,
+                 clip_args->passes, clip_args->passes == 1 ? "" : "es", d.obs.cols());
   });
 
   struct CloneArgs {

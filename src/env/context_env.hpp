@@ -27,6 +27,7 @@ class ContextEnv : public Env {
   int context() const { return context_; }
   void set_context(int c);  // Error outside [0, contexts)
   int contexts() const { return contexts_; }
+  Env& inner() { return *inner_; }  // the wrapped environment (e.g. to pose its character from a clip)
 
  private:
   Eigen::VectorXd with_context(const Eigen::VectorXd& obs) const;
