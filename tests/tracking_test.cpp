@@ -82,6 +82,12 @@ TEST(TrackingReward, KnownOffsetsGiveHandComputedKernels) {
   const TrackingTerms half = tracking_terms(sk, sim, ref, TrackingScales{1.0, 0.05, 20.0, 5.0});
   EXPECT_NEAR(half.pose, std::exp(-0.09 / 2), 1e-12);
   EXPECT_NEAR(half.com, std::exp(-0.05), 1e-12);
+  // The velocity kernel reads the centre of mass's velocity instead of its position.
+  sim.com_velocity = ref.com_velocity + Vec3(0.5, 0, -0.1);
+  EXPECT_NEAR(tracking_terms(sk, sim, ref, TrackingScales{}, ComTerm::Velocity).com, std::exp(-10.0 * 0.26), 1e-12);
+  sim.com = ref.com;
+  EXPECT_NEAR(tracking_terms(sk, sim, ref, TrackingScales{}, ComTerm::Velocity).com, std::exp(-10.0 * 0.26), 1e-12);
+  EXPECT_DOUBLE_EQ(tracking_terms(sk, sim, ref).com, 1.0);  // position: unmoved
 }
 
 TEST(TrackingReward, EndEffectorsAreComparedInEachOwnHeadingFrame) {
@@ -209,6 +215,52 @@ TEST(TrackingEnv, SinkingBelowHalfTheReferencesRootHeightIsAFall) {
   const auto [by_contact, torso_down_too, unused] = run(0.0);
   EXPECT_TRUE(torso_down_too);
   EXPECT_LT(by_height, by_contact);
+}
+
+// The reference's centre-of-mass velocity is its mean over the step; over a whole cycle of the
+// walk those means add up to the cycle's displacement (about 1.24 m in 1.27 s).
+TEST(TrackingReward, TheReferencesCentreOfMassVelocityIsItsMeanOverTheStep) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  auto env = make_tracking_env(ch, walk, TrackingConfig{});
+  const MassModel masses(env->world());
+  const double dt = 1.0 / 30.0, t = 0.7;
+  const TrackedState now = reference_state(*walk, masses, t, dt);
+  const Vec3 expected = (now.com - reference_state(*walk, masses, t - dt).com) / dt;
+  EXPECT_LT((now.com_velocity - expected).norm(), 1e-12);
+  EXPECT_EQ(reference_state(*walk, masses, t).com_velocity, Vec3::Zero());  // without dt: not computed
+  const int steps = 40;
+  const double T = walk->duration(), step = T / steps;
+  Vec3 mean = Vec3::Zero();
+  for (int k = 1; k <= steps; ++k) mean += reference_state(*walk, masses, k * step, step).com_velocity / steps;
+  const Vec3 cycle = reference_state(*walk, masses, T).com - reference_state(*walk, masses, 0).com;
+  EXPECT_LT((mean - cycle / T).norm(), 1e-9);
+  EXPECT_NEAR(mean.head<2>().norm(), 0.98, 0.02);  // the walk's pace (its root drift per cycle / T)
+}
+
+// com_term: velocity in the env: the reported term is the kernel of the simulated centre of mass's
+// displacement over the step against the reference's.
+TEST(TrackingEnv, AVelocityComTermComparesTheStepsMeanVelocities) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader reader("test.yaml");
+  const EnvFactory f = make_env_factory(
+      reader.parse("{name: tracking, clip: deepmimic/motions/humanoid3d_walk.txt, init: fixed, com_term: velocity, scales: {com: 1}}", "t"),
+      reader);
+  auto env_ptr = f();
+  auto& env = dynamic_cast<CharacterEnv&>(*env_ptr);
+  env.reset(init_state_from_clip(*env.reference(), 0.4));
+  const MassModel masses(env.world());
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 before = env.world().centre_of_mass();
+    const StepResult r = env.step(Eigen::VectorXd::Zero(env.action_size()));
+    const Vec3 v_sim = (env.world().centre_of_mass() - before) * 30.0;
+    const Vec3 v_ref = reference_state(*env.reference(), masses, env.time(), 1.0 / 30.0).com_velocity;
+    ASSERT_EQ(r.reward_terms[3].first, "com");
+    EXPECT_NEAR(r.reward_terms[3].second, 0.10 * std::exp(-(v_ref - v_sim).squaredNorm()), 1e-9) << k;
+  }
+  const YamlReader bad("bad.yaml");
+  EXPECT_THROW((void)make_env_factory(bad.parse("{name: tracking, com_term: speed}", "bad"), bad), Error);
 }
 
 TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {

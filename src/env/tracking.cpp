@@ -17,7 +17,8 @@ double squared(double x) { return x * x; }
 
 }  // namespace
 
-TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales) {
+TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales,
+                             ComTerm com) {
   double pose = 0, vel = 0, ee = 0;
   int joints = 0, effectors = 0;
   const HeadingFrame sim_heading = HeadingFrame::of(sim.pose), ref_heading = HeadingFrame::of(ref.pose);
@@ -43,7 +44,8 @@ TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const 
     t.velocity = std::exp(-scales.velocity * vel / joints);
   }
   if (effectors > 0) t.end_effector = std::exp(-scales.end_effector * ee / effectors);
-  t.com = std::exp(-scales.com * (ref.com - sim.com).squaredNorm());
+  const Vec3 com_error = com == ComTerm::Velocity ? Vec3(ref.com_velocity - sim.com_velocity) : Vec3(ref.com - sim.com);
+  t.com = std::exp(-scales.com * com_error.squaredNorm());
   return t;
 }
 
@@ -66,11 +68,16 @@ Vec3 MassModel::centre_of_mass(const LinkFrames& links) const {
   return sum / total_;
 }
 
-TrackedState reference_state(const Clip& clip, const MassModel& masses, double t) {
+TrackedState reference_state(const Clip& clip, const MassModel& masses, double t, double dt) {
   TrackedState s;
   std::tie(s.pose, s.velocity) = clip_state(clip, t);
   forward_kinematics(clip.skeleton, s.pose, s.links);
   s.com = masses.centre_of_mass(s.links);
+  if (dt > 0) {
+    LinkFrames before;
+    forward_kinematics(clip.skeleton, clip.sample(t - dt), before);
+    s.com_velocity = (s.com - masses.centre_of_mass(before)) / dt;
+  }
   return s;
 }
 
@@ -97,19 +104,23 @@ class TrackingEnv final : public CharacterEnv {
  public:
   TrackingEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg, std::shared_ptr<const Clip> clip,
               const TrackingConfig& cfg)
-      : CharacterEnv(ch, env_cfg, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales) {
+      : CharacterEnv(ch, env_cfg, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales),
+        com_term_(cfg.com_term), dt_(1.0 / env_cfg.sim.control_hz) {
     set_max_step_reward(weights_.pose + weights_.velocity + weights_.end_effector + weights_.com);
   }
 
   StepResult step(const Eigen::VectorXd& action) override {
+    const bool by_velocity = com_term_ == ComTerm::Velocity;
+    const Vec3 com_before = by_velocity ? world().centre_of_mass() : Vec3::Zero();
     StepResult r = CharacterEnv::step(action);
     const World& w = world();
     sim_.pose = w.pose();
     sim_.velocity = w.velocity();
     sim_.links = w.link_frames();
     sim_.com = w.centre_of_mass();
-    const TrackedState ref = reference_state(*reference(), masses_, time());
-    const TrackingTerms t = tracking_terms(w.character().skeleton, sim_, ref, scales_);
+    if (by_velocity) sim_.com_velocity = (sim_.com - com_before) / dt_;
+    const TrackedState ref = reference_state(*reference(), masses_, time(), by_velocity ? dt_ : 0.0);
+    const TrackingTerms t = tracking_terms(w.character().skeleton, sim_, ref, scales_, com_term_);
     r.reward_terms.emplace_back("pose", weights_.pose * t.pose);
     r.reward_terms.emplace_back("velocity", weights_.velocity * t.velocity);
     r.reward_terms.emplace_back("end_effector", weights_.end_effector * t.end_effector);
@@ -121,6 +132,8 @@ class TrackingEnv final : public CharacterEnv {
   MassModel masses_;
   TrackingWeights weights_;
   TrackingScales scales_;
+  ComTerm com_term_;
+  double dt_;         // control step
   TrackedState sim_;  // storage reused every step
 };
 

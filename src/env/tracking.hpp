@@ -7,6 +7,9 @@
 //   r_end_effector exp(-40  * mean_e |p*_e - p_e|^2)           hands and feet relative to the root,
 //                                                               each in its own heading frame
 //   r_com          exp(-10  * |c* - c|^2)                       centre of mass in the world
+// or, with com_term velocity, exp(-scale * |v*_c - v_c|^2) on the centre of mass's mean velocity
+// over the step (DeepMimic's implementation; its scale is 10 * 0.1 = 1): a position kernel gives
+// no pull once the character has fallen a metre behind a fast clip (the dog's 2.4 m/s trot).
 // Means, not the paper's sums: DeepMimic's implementation (which seed 003 builds on) normalises its
 // joint weights to sum 1 and divides the end-effector error by their count; with sums the kernels
 // of a 13-joint humanoid would be near zero for any early policy. A step's reward is at most 1, so
@@ -33,13 +36,17 @@ struct TrackedState {
   PoseVelocity velocity;
   LinkFrames links;
   Vec3 com = Vec3::Zero();
+  Vec3 com_velocity = Vec3::Zero();  // mean over the last control step
 };
+
+enum class ComTerm { Position, Velocity };
 
 // The four kernels, each in [0, 1] (1: identical).
 struct TrackingTerms {
   double pose = 1, velocity = 1, end_effector = 1, com = 1;
 };
-TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales = {});
+TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales = {},
+                             ComTerm com = ComTerm::Position);
 
 // The character's masses, to place the reference's centre of mass from its link frames.
 class MassModel {
@@ -53,8 +60,9 @@ class MassModel {
   double total_ = 0.0;
 };
 
-// The reference's state at clip time t.
-TrackedState reference_state(const Clip& clip, const MassModel& masses, double t);
+// The reference's state at clip time t; with dt > 0 also its centre of mass's mean velocity
+// over [t - dt, t].
+TrackedState reference_state(const Clip& clip, const MassModel& masses, double t, double dt = 0.0);
 
 struct TrackingConfig {
   enum class Init {
@@ -64,6 +72,7 @@ struct TrackingConfig {
   Init init = Init::Reference;
   TrackingWeights weights;
   TrackingScales scales;
+  ComTerm com_term = ComTerm::Position;  // Velocity: set scales.com to about 1
   double max_seconds = 20.0;       // cyclic clips; a non-cyclic clip ends at its end
   bool early_termination = true;   // off for contact-rich clips (roll, get-up)
   double fall_height = 0.5;        // a fall also below this fraction of the reference's root height (0: off)
