@@ -15,6 +15,7 @@
 #include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "env/character_env.hpp"
+#include "env/context_env.hpp"
 #include "env/env_factory.hpp"
 #include "learn/imitation_eval.hpp"
 #include "learn/runtime_cost.hpp"
@@ -39,6 +40,7 @@ std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", 
 struct EvalArgs {
   std::filesystem::path run, json, clip, character;
   int episodes = 20, trials = 20;
+  int context = -1;  // a behaviour context held for the imitation trials (-1: none given)
   bool latency = false;
   std::vector<double> masses;  // robustness: projectile masses (kg)
   int robustness_trials = 20;
@@ -120,9 +122,15 @@ void evaluate(const EvalArgs& args) {
                                  json_string(args.run.string()), s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
                                  mean_of(lengths), fall_rate);
 
-  // Imitation: a character environment and a clip to compare with.
+  // Imitation: a character environment and a clip to compare with. A behaviour-context env is
+  // measured through the env it wraps, the policy's input given the held context's one-hot.
   const std::unique_ptr<Env> env = trainer->make_env();
-  auto* character = dynamic_cast<CharacterEnv*>(env.get());
+  auto* contexts = dynamic_cast<ContextEnv*>(env.get());
+  auto* character = dynamic_cast<CharacterEnv*>(contexts ? &contexts->inner() : env.get());
+  if (args.context >= 0 && !contexts) throw Error(args.run.string() + ": --context: this run's environment has no behaviour context");
+  if (contexts && args.context >= contexts->contexts())
+    throw Error(args.run.string() + ": --context " + std::to_string(args.context) + ": the run has contexts 0 to " +
+                std::to_string(contexts->contexts() - 1));
   std::unique_ptr<Clip> clip;
   if (!args.clip.empty()) {
     if (!character) throw Error(args.run.string() + ": --clip needs a character environment; this run's has no simulated character");
@@ -131,20 +139,32 @@ void evaluate(const EvalArgs& args) {
     clip = std::make_unique<Clip>(load_motion(args.clip, load));
   }
   if (character && (clip || character->reference())) {
+    if (contexts && args.context < 0)
+      throw Error(args.run.string() + ": its policy takes a behaviour context: give --context K for the imitation trials");
     const int history = trainer->config().policy.net.history;
-    const PolicyFunction act = [&](const Eigen::VectorXd& input) { return trainer->act(input); };
+    PolicyFunction act = [&](const Eigen::VectorXd& input) { return trainer->act(input); };
+    if (contexts) act = [&, k = contexts->contexts(), frame = character->observation_size()](const Eigen::VectorXd& input) {
+      // Each stacked frame gains the one-hot, as ContextEnv appends it to every observation.
+      Eigen::VectorXd with(input.size() / frame * (frame + k));
+      for (Eigen::Index f = 0; f < input.size() / frame; ++f) {
+        with.segment(f * (frame + k), frame) = input.segment(f * frame, frame);
+        with.segment(f * (frame + k) + frame, k) = Eigen::VectorXd::Unit(k, args.context);
+      }
+      return trainer->act(with);
+    };
     const ImitationReport r = measure_imitation(*character, act, history, args.trials, clip.get());
     const std::string name = clip ? clip->name : character->reference()->name;
-    spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions)",
-                 r.trial_errors.size(), name, r.cycle_seconds);
+    spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{})",
+                 r.trial_errors.size(), name, r.cycle_seconds, contexts ? fmt::format(", context {} held", args.context) : "");
     spdlog::info("  error           {:.3f} +- {:.3f} m (mean over links of the world position error)", r.error_mean(), r.error_std());
     spdlog::info("  falls           {} of {} full episodes; down (a fall, or the root below half the reference's for {} frames) {}", r.falls,
                  r.trial_errors.size(), kLyingFrames, r.down);
     if (!r.trial_returns.empty()) spdlog::info("  normalised return {:.3f} (full episodes; 1 = perfect tracking)", r.normalised_return_mean());
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
-                        "\"falls\": {}, \"down\": {}, \"normalised_return\": {}}}",
+                        "\"falls\": {}, \"down\": {}, \"normalised_return\": {}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
-                        json_number(r.error_std()), r.falls, r.down, json_number(r.normalised_return_mean()));
+                        json_number(r.error_std()), r.falls, r.down, json_number(r.normalised_return_mean()),
+                        contexts ? fmt::format(", \"context\": {}", args.context) : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
@@ -165,6 +185,8 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   ev->add_option("--clip", args->clip, "reference clip for the imitation error (default: the environment's own)")->check(CLI::ExistingFile);
   ev->add_option("--character", args->character, "DeepMimic character file of a .txt --clip (default: found by its name)");
+  ev->add_option("--context", args->context, "behaviour context held in the imitation trials (a run with env.context)")
+      ->check(CLI::NonNegativeNumber);
   ev->add_option("--robustness", args->masses, "projectile masses (kg) for seed 004's robustness test, e.g. 0,1,5,10,20 (0: no cubes, the control)")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
