@@ -84,6 +84,11 @@ GaussianPolicyImpl::GaussianPolicyImpl(int input_size, int action_size, const Po
   log_std_ = register_parameter("log_std", torch::full({action_size}, cfg.log_std), cfg.learn_std);
 }
 
+void GaussianPolicyImpl::set_log_std(double value) {
+  const torch::NoGradGuard no_grad;
+  log_std_.fill_(value);
+}
+
 std::pair<torch::Tensor, torch::Tensor> GaussianPolicyImpl::forward(const torch::Tensor& obs) {
   torch::Tensor mean = net_->forward(obs);
   return {mean, log_std_.expand_as(mean)};

@@ -30,6 +30,7 @@ class GaussianPolicyImpl : public torch::nn::Module {
   // Mean [batch, actions] and log sigma broadcast to the same shape.
   std::pair<torch::Tensor, torch::Tensor> forward(const torch::Tensor& obs);
   torch::Tensor log_std() const { return log_std_; }
+  void set_log_std(double value);  // every action's; for a fixed covariance's schedule
 
  private:
   FeatureNet net_{nullptr};

@@ -56,6 +56,9 @@ void PpoLearner::set_progress(double progress) {
   const double scale = o.schedule == "linear" ? 1.0 - (1.0 - o.final_fraction) * std::clamp(progress, 0.0, 1.0) : 1.0;
   set_lr(*policy_opt_, o.policy_lr * scale);
   set_lr(*value_opt_, o.value_lr * scale);
+  const PolicyConfig& pc = cfg_.policy;
+  if (!pc.learn_std && std::isfinite(pc.log_std_final))
+    policy_->set_log_std(pc.log_std + (pc.log_std_final - pc.log_std) * std::clamp(progress, 0.0, 1.0));
 }
 
 void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats& s, int iteration) {

@@ -45,7 +45,7 @@ class PpoLearner {
   torch::optim::Optimizer& value_optimizer() { return *value_opt_; }
   KlController& kl() { return kl_; }
 
-  // Learning rates at `progress` in [0, 1] of the run (the schedule of the config).
+  // Learning rates, and a fixed covariance's log sigma, at `progress` in [0, 1] of the run (the config's schedules).
   void set_progress(double progress);
   // One PPO update on a batch. `iteration` only labels error messages.
   PpoStats update(const PpoBatch& batch, std::mt19937_64& rng, bool parallel_value, int iteration);

@@ -48,6 +48,10 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
     c.policy.net = read_network(p, c.policy.net);
     c.policy.log_std = p.number("log_std", c.policy.log_std, -20, 5);
     c.policy.learn_std = p.boolean("learn_std", c.policy.learn_std);
+    if (p.has("log_std_final")) {
+      if (c.policy.learn_std) r.fail(top.child("policy"), "'policy.log_std_final' anneals a fixed covariance: set 'learn_std: false'");
+      c.policy.log_std_final = p.number("log_std_final", 0.0, -20, 5);
+    }
     p.finish();
   }
   {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct PolicyConfig {
   NetworkConfig net;
   double log_std = -1.0;   // initial log sigma (seed 002: -1; seed 000: e^-1..1)
   bool learn_std = true;   // false: fixed diagonal covariance (SFV)
+  // With a fixed covariance: log sigma at the last iteration, reached linearly from log_std over
+  // the run (NaN: held at log_std). Coarse exploration early, precise tracking late.
+  double log_std_final = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct PpoConfig {

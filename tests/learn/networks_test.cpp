@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "learn/networks.hpp"
 #include "learn/ppo.hpp"
@@ -67,6 +68,27 @@ TEST(Networks, RecurrentVariantReadsFramesInOrder) {
   const torch::Tensor reversed = x.view({2, 4, 5}).flip({1}).reshape({2, 20});
   EXPECT_FALSE(torch::allclose(policy->forward(reversed).first, mean));
   EXPECT_THROW(GaussianPolicy(21, 3, pc), mimic::Error);  // 21 values are not 4 frames
+}
+
+TEST(Networks, AFixedCovarianceAnnealsToItsFinalLogStd) {
+  TrainConfig c;
+  c.policy.learn_std = false;
+  c.policy.log_std = -1.0;
+  c.policy.log_std_final = -2.5;
+  PpoLearner ppo(3, 2, c);
+  auto log_std = [&] { return ppo.policy()->forward(torch::zeros({1, 3})).second; };
+  ppo.set_progress(0.0);
+  EXPECT_TRUE(torch::allclose(log_std(), torch::full({1, 2}, -1.0)));
+  ppo.set_progress(0.4);  // -1 + 0.4 * (-1.5)
+  EXPECT_TRUE(torch::allclose(log_std(), torch::full({1, 2}, -1.6)));
+  ppo.set_progress(1.7);  // held at the final value past the run's end
+  EXPECT_TRUE(torch::allclose(log_std(), torch::full({1, 2}, -2.5)));
+  EXPECT_FALSE(ppo.policy()->log_std().requires_grad());
+  // Without a final value the covariance stays where it started.
+  c.policy.log_std_final = std::numeric_limits<double>::quiet_NaN();
+  PpoLearner fixed(3, 2, c);
+  fixed.set_progress(0.9);
+  EXPECT_TRUE(torch::allclose(fixed.policy()->forward(torch::zeros({1, 3})).second, torch::full({1, 2}, -1.0)));
 }
 
 TEST(Networks, LinearScheduleAndSgdWithMomentum) {

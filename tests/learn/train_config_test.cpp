@@ -1,6 +1,7 @@
 // Training configs: defaults, every section read, and errors that name the key and the line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -124,6 +125,14 @@ TEST(TrainConfig, EnvironmentSectionsAreCheckedByTheFactory) {
   const auto env = f();
   EXPECT_EQ(env->action_size(), 3);
   EXPECT_EQ(env->observation_size(), 2);
+}
+
+TEST(TrainConfig, AnnealedLogStdNeedsAFixedCovariance) {
+  const TrainConfig c = parse_train_config("policy: {log_std: -1.6, learn_std: false, log_std_final: -2.3}\n", "t.yaml");
+  EXPECT_DOUBLE_EQ(c.policy.log_std_final, -2.3);
+  EXPECT_TRUE(std::isnan(parse_train_config("policy: {learn_std: false}\n", "t.yaml").policy.log_std_final));
+  EXPECT_NE(error_of("policy: {log_std_final: -2}\n").find("set 'learn_std: false'"), std::string::npos);
+  EXPECT_NE(error_of("policy: {learn_std: false, log_std_final: 9}\n").find("policy.log_std_final"), std::string::npos);
 }
 
 TEST(OverrideConfig, SetsNestedKeysAndListElementsAndNamesBadPaths) {
