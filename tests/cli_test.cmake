@@ -193,6 +193,8 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${LAST_OUT}" "(mean actions, context 1 held)")
   file(READ ${OUT}/context.json context_json)
   expect_in("${context_json}" "\"context\": 1}")
+  run_ok(eval ${OUT}/context_run --episodes 1 --trials 1 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --context 0 --robustness 0,5 --robustness-trials 1 --robustness-seconds 0.5)
+  expect_in("${LAST_OUT}" "frames survived")
   run_fails("give --context K" eval ${OUT}/context_run --episodes 1 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt)
   run_fails("the run has contexts 0 to 1" eval ${OUT}/context_run --episodes 1 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --context 2)
   # The docs' figures: robustness curves and a table of evaluations.

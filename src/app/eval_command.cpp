@@ -49,6 +49,36 @@ struct EvalArgs {
   std::uint64_t seed = 12345;
 };
 
+// The simulated character a run's environment drives: a behaviour-context env's through the env
+// it wraps. Null when there is none.
+CharacterEnv* character_of(Env& env) {
+  auto* contexts = dynamic_cast<ContextEnv*>(&env);
+  return dynamic_cast<CharacterEnv*>(contexts ? &contexts->inner() : &env);
+}
+
+// The policy as a function of the character env's (stacked) observations. A policy over behaviour
+// contexts needs --context: the held context's one-hot goes after every stacked frame, as
+// ContextEnv appends it to every observation.
+PolicyFunction policy_on_character(const EvalArgs& args, const Trainer& trainer, Env& env) {
+  auto* contexts = dynamic_cast<ContextEnv*>(&env);
+  if (args.context >= 0 && !contexts) throw Error(args.run.string() + ": --context: this run's environment has no behaviour context");
+  if (!contexts) return [&trainer](const Eigen::VectorXd& input) { return trainer.act(input); };
+  const int k = contexts->contexts(), frame = contexts->inner().observation_size();
+  if (args.context < 0) throw Error(args.run.string() + ": its policy takes a behaviour context: give --context K (0 to " + std::to_string(k - 1) + ")");
+  if (args.context >= k)
+    throw Error(args.run.string() + ": --context " + std::to_string(args.context) + ": the run has contexts 0 to " + std::to_string(k - 1));
+  const Eigen::VectorXd one_hot = Eigen::VectorXd::Unit(k, args.context);
+  return [&trainer, k, frame, one_hot](const Eigen::VectorXd& input) {
+    const Eigen::Index frames = input.size() / frame;
+    Eigen::VectorXd with(frames * (frame + k));
+    for (Eigen::Index f = 0; f < frames; ++f) {
+      with.segment(f * (frame + k), frame) = input.segment(f * frame, frame);
+      with.segment(f * (frame + k) + frame, k) = one_hot;
+    }
+    return trainer.act(with);
+  };
+}
+
 // Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
 std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   const std::filesystem::path config = args.run / "config.yaml";
@@ -64,12 +94,12 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
                                               fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0), "rewards=[{source: env}]"});
     const TrainConfig cfg = parse_train_config(text, config.string());
     const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
-    auto* character = dynamic_cast<CharacterEnv*>(env.get());
+    CharacterEnv* character = character_of(*env);
     if (!character) throw Error(args.run.string() + ": robustness needs a character environment");
     if (std::abs(character->config().sim.control_hz - 30.0) > 1e-9)
       throw Error(args.run.string() + ": robustness counts frames at 30 Hz; this environment runs at " +
                   std::to_string(character->config().sim.control_hz) + " Hz");
-    const PolicyFunction act = [&](const Eigen::VectorXd& input) { return trainer.act(input); };
+    const PolicyFunction act = policy_on_character(args, trainer, *env);
     const RobustnessReport r = measure_robustness(*character, act, trainer.config().policy.net.history, args.robustness_trials, max_frames);
     spdlog::info("    {}     {:.1f} +- {:.1f} frames survived", mass > 0 ? fmt::format("{:6.2f} kg", mass) : std::string("no cubes "), r.mean(), r.std());
     json += fmt::format("{}{{\"mass\": {}, \"frames_mean\": {}, \"frames_std\": {}, \"trials\": {}, \"max_frames\": {}}}", i ? ", " : "", mass,
@@ -125,12 +155,9 @@ void evaluate(const EvalArgs& args) {
   // Imitation: a character environment and a clip to compare with. A behaviour-context env is
   // measured through the env it wraps, the policy's input given the held context's one-hot.
   const std::unique_ptr<Env> env = trainer->make_env();
-  auto* contexts = dynamic_cast<ContextEnv*>(env.get());
-  auto* character = dynamic_cast<CharacterEnv*>(contexts ? &contexts->inner() : env.get());
+  CharacterEnv* character = character_of(*env);
+  const bool contexts = dynamic_cast<ContextEnv*>(env.get()) != nullptr;
   if (args.context >= 0 && !contexts) throw Error(args.run.string() + ": --context: this run's environment has no behaviour context");
-  if (contexts && args.context >= contexts->contexts())
-    throw Error(args.run.string() + ": --context " + std::to_string(args.context) + ": the run has contexts 0 to " +
-                std::to_string(contexts->contexts() - 1));
   std::unique_ptr<Clip> clip;
   if (!args.clip.empty()) {
     if (!character) throw Error(args.run.string() + ": --clip needs a character environment; this run's has no simulated character");
@@ -139,19 +166,8 @@ void evaluate(const EvalArgs& args) {
     clip = std::make_unique<Clip>(load_motion(args.clip, load));
   }
   if (character && (clip || character->reference())) {
-    if (contexts && args.context < 0)
-      throw Error(args.run.string() + ": its policy takes a behaviour context: give --context K for the imitation trials");
     const int history = trainer->config().policy.net.history;
-    PolicyFunction act = [&](const Eigen::VectorXd& input) { return trainer->act(input); };
-    if (contexts) act = [&, k = contexts->contexts(), frame = character->observation_size()](const Eigen::VectorXd& input) {
-      // Each stacked frame gains the one-hot, as ContextEnv appends it to every observation.
-      Eigen::VectorXd with(input.size() / frame * (frame + k));
-      for (Eigen::Index f = 0; f < input.size() / frame; ++f) {
-        with.segment(f * (frame + k), frame) = input.segment(f * frame, frame);
-        with.segment(f * (frame + k) + frame, k) = Eigen::VectorXd::Unit(k, args.context);
-      }
-      return trainer->act(with);
-    };
+    const PolicyFunction act = policy_on_character(args, *trainer, *env);
     const ImitationReport r = measure_imitation(*character, act, history, args.trials, clip.get());
     const std::string name = clip ? clip->name : character->reference()->name;
     spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{})",
