@@ -178,6 +178,7 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   file(READ ${OUT}/tracking.json tracking_json)
   expect_in("${tracking_json}" "\"imitation\": {\"clip\": \"humanoid3d_walk\", \"trials\": 3")
   expect_in("${tracking_json}" "\"normalised_return\": 0.")
+  expect_in("${tracking_json}" "\"progress\": ")  # the walk moves: its progress is measured
   run_ok(eval ${OUT}/tracking_run --episodes 1 --trials 1 --robustness 0,2,8 --robustness-trials 1 --robustness-seconds 0.5 --latency --json ${OUT}/robust.json)
   file(READ ${OUT}/robust.json robust_json)
   expect_in("${robust_json}" "\"robustness\": [{\"mass\": 0, \"frames_mean\": ")

@@ -49,8 +49,9 @@ std::string imitation_line(const Trainer& trainer, int trials) {
   auto& character = dynamic_cast<CharacterEnv&>(*env);
   const PolicyFunction act = [&](const Eigen::VectorXd& x) { return trainer.act(x); };
   const ImitationReport r = measure_imitation(character, act, trainer.config().policy.net.history, trials);
-  return fmt::format("imitation error {:.3f} +- {:.3f} m over {} phases, normalised return {:.3f}, {} of {} down ({} fell)",
-                     r.error_mean(), r.error_std(), trials, r.normalised_return_mean(), r.down, trials, r.falls);
+  return fmt::format("imitation error {:.3f} +- {:.3f} m over {} phases, normalised return {:.3f}, {} of {} down ({} fell){}",
+                     r.error_mean(), r.error_std(), trials, r.normalised_return_mean(), r.down, trials, r.falls,
+                     r.trial_progress.empty() ? "" : fmt::format(", progress {:.2f}", r.progress_mean()));
 }
 
 void film(const Trainer& trainer, const std::filesystem::path& out, double seconds) {

@@ -176,10 +176,13 @@ void evaluate(const EvalArgs& args) {
     spdlog::info("  falls           {} of {} full episodes; down (a fall, or the root below half the reference's for {} frames) {}", r.falls,
                  r.trial_errors.size(), kLyingFrames, r.down);
     if (!r.trial_returns.empty()) spdlog::info("  normalised return {:.3f} (full episodes; 1 = perfect tracking)", r.normalised_return_mean());
+    if (!r.trial_progress.empty())
+      spdlog::info("  progress        {:.3f} of the reference's ground covered (full episodes, {} trials; 1 = kept pace)", r.progress_mean(),
+                   r.trial_progress.size());
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
-                        "\"falls\": {}, \"down\": {}, \"normalised_return\": {}{}}}",
+                        "\"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
-                        json_number(r.error_std()), r.falls, r.down, json_number(r.normalised_return_mean()),
+                        json_number(r.error_std()), r.falls, r.down, json_number(r.normalised_return_mean()), json_number(r.progress_mean()),
                         contexts ? fmt::format(", \"context\": {}", args.context) : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");

@@ -34,6 +34,13 @@ double RobustnessReport::mean() const { return mean_of(frames); }
 double RobustnessReport::std() const { return std_of(frames); }
 
 double ImitationReport::normalised_return_mean() const { return mean_of(trial_returns); }
+double ImitationReport::progress_mean() const { return mean_of(trial_progress); }
+
+double progress_along(const Vec3& sim_displacement, const Vec3& ref_displacement) {
+  const Eigen::Vector2d sim = sim_displacement.head<2>(), ref = ref_displacement.head<2>();
+  if (ref.norm() < kMinProgressMetres) return std::numeric_limits<double>::quiet_NaN();
+  return sim.dot(ref) / ref.squaredNorm();
+}
 
 ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip) {
   if (!clip) clip = env.reference();
@@ -54,6 +61,10 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
   for (int i = 0; i < trials; ++i) {
     const double t0 = clip->duration() * i / trials;
     frames.reset(env.reset(env.state_on_clip(*clip, t0)));
+    // Progress: where the character's root is when its episode ends (a fall ends it early)
+    // against where the reference's is at the full episode's end.
+    const Vec3 sim_start = env.world().root_position(), ref_start = clip->sample(t0).root_pos;
+    Vec3 sim_end = sim_start;
     // Steps of the full episode: to the time limit, or to a non-cyclic clip's end.
     const double episode_seconds = cyclic ? env.config().max_seconds : std::min(env.config().max_seconds, clip->duration() - t0);
     const int episode_steps = std::max(1, static_cast<int>(std::ceil(episode_seconds * hz - 1e-9)));
@@ -77,7 +88,8 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
         ret += r.reward();
         fell |= is_failure(r.termination);
         over = r.done();
-        low = env.world().root_position().z() < 0.5 * ref.root_pos.z() ? low + 1 : 0;
+        sim_end = env.world().root_position();
+        low = sim_end.z() < 0.5 * ref.root_pos.z() ? low + 1 : 0;
         lay |= low >= kLyingFrames;
       }
     }
@@ -85,6 +97,8 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     if (fell) ++report.falls;
     if (fell || lay) ++report.down;
     if (max_step > 0) report.trial_returns.push_back(ret / (episode_steps * max_step));
+    const Vec3 ref_end = clip->sample(t0 + episode_steps / hz).root_pos;
+    if (const double p = progress_along(sim_end - sim_start, ref_end - ref_start); std::isfinite(p)) report.trial_progress.push_back(p);
   }
   return report;
 }

@@ -7,6 +7,10 @@
 //   normalised return (seed 003): each trial's full episode return (a fall ends it: nothing more
 //     is earned) divided by the most its episode could earn (steps to the time limit or the
 //     clip's end, times the environment's maximum reward per step); only where that maximum is known.
+//   progress: the character's horizontal root displacement from the start to where its episode
+//     ended (a fall ends it early), projected on the reference's over the full episode (to the time
+//     limit or the clip's end), as a fraction of it (1: kept pace all along; 0.5: covered half the
+//     ground); only for trials in which the reference moves at least kMinProgressMetres.
 // A trial that falls keeps being measured to the end of its cycle: the character lies where it
 // fell and its error grows, as the paper's error of a failed imitation does.
 // Torch-free: the policy is any function from a stacked input to an action.
@@ -25,9 +29,16 @@ double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<Li
 // Consecutive frames a character must lie for to count as down (DESIGN.md section 5's robustness rule).
 constexpr int kLyingFrames = 10;
 
+// The reference's horizontal displacement below which progress is not measured (metres).
+constexpr double kMinProgressMetres = 0.5;
+// (sim . ref) / |ref|^2 on the horizontal parts of two displacements; NaN when the reference's is
+// shorter than kMinProgressMetres.
+double progress_along(const Vec3& sim_displacement, const Vec3& ref_displacement);
+
 struct ImitationReport {
   std::vector<double> trial_errors;   // per trial: the error averaged over its cycle
   std::vector<double> trial_returns;  // per trial: normalised return (empty when not known)
+  std::vector<double> trial_progress; // per trial whose reference moves: progress (above)
   int falls = 0;                      // trials whose episode ended in a fall (the env's termination rule)
   // Trials whose character lay on the ground in the full episode: a fall, or its root below half
   // the reference's root height for `kLyingFrames` consecutive frames. Catches a policy that lies
@@ -37,6 +48,7 @@ struct ImitationReport {
   double error_mean() const;
   double error_std() const;
   double normalised_return_mean() const;  // NaN when not known
+  double progress_mean() const;           // NaN when the reference does not move
 };
 
 // Runs `trials` episodes of `env` from the reference `clip` (the env's own reference when null)
