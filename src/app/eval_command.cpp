@@ -64,7 +64,8 @@ PolicyFunction policy_on_character(const EvalArgs& args, const Trainer& trainer,
   if (args.context >= 0 && !contexts) throw Error(args.run.string() + ": --context: this run's environment has no behaviour context");
   if (!contexts) return [&trainer](const Eigen::VectorXd& input) { return trainer.act(input); };
   const int k = contexts->contexts(), frame = contexts->inner().observation_size();
-  if (args.context < 0) throw Error(args.run.string() + ": its policy takes a behaviour context: give --context K (0 to " + std::to_string(k - 1) + ")");
+  if (args.context < 0)
+    throw Error(args.run.string() + ": its policy takes a behaviour context: give --context K (0 to " + std::to_string(k - 1) + ")");
   if (args.context >= k)
     throw Error(args.run.string() + ": --context " + std::to_string(args.context) + ": the run has contexts 0 to " + std::to_string(k - 1));
   const Eigen::VectorXd one_hot = Eigen::VectorXd::Unit(k, args.context);

@@ -27,7 +27,8 @@ void Demonstrations::append(const Demonstrations& more) {
   const auto same_slice = [](const ObservationSlice& a, const ObservationSlice& b) {
     return a.name == b.name && a.offset == b.offset && a.size == b.size;
   };
-  if (!std::equal(layout.begin(), layout.end(), more.layout.begin(), more.layout.end(), same_slice)) throw Error("demonstrations of " + more.source + " name other observation parts than those of " + source);
+  if (!std::equal(layout.begin(), layout.end(), more.layout.begin(), more.layout.end(), same_slice))
+    throw Error("demonstrations of " + more.source + " name other observation parts than those of " + source);
   const int offset = episode.empty() ? 0 : *std::max_element(episode.begin(), episode.end()) + 1;
   const Eigen::Index n = obs.rows();
   obs.conservativeResize(n + more.obs.rows(), Eigen::NoChange);

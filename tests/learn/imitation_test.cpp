@@ -108,6 +108,10 @@ TEST(Demonstrations, AppendingKeepsEpisodesApartAndRefusesOtherColumns) {
   narrow.next_obs.conservativeResize(Eigen::NoChange, 1);
   narrow.source = "narrow.csv";
   EXPECT_NE(error_of([&] { a.append(narrow); }).find("do not match"), std::string::npos);
+  Demonstrations renamed = b;
+  renamed.layout = {{"speed", 0, 2}};
+  renamed.source = "renamed.csv";
+  EXPECT_NE(error_of([&] { a.append(renamed); }).find("renamed.csv name other observation parts"), std::string::npos);
   EXPECT_EQ(a.size(), 5 * test::OscillatorEnv::kLength);  // left as it was
 }
 
