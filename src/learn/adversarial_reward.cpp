@@ -155,6 +155,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   DiscriminatorConfig d;
   if (iccgan) {  // seed 004 Table 1 and section 5.1
     d.loss = "hinge", d.heads = 32, d.gradient_penalty = 10.0, d.lr = 1e-5, d.batch = 512, d.replay = 8192;
+    d.standardise = "mixture";  // seed 004 section 6.1: inputs normalised by statistics updated during training
     d.net.hidden = {256, 128};
     d.net.activation = "relu";
   }
@@ -177,6 +178,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   d.replay = static_cast<int>(s.integer("replay", d.replay, 0, 1 << 26));
   d.reward_clip = s.number("reward_clip", d.reward_clip, 1e-6, 1e6);
   d.reward_offset = s.number("reward_offset", d.reward_offset, -1e6, 1e6);
+  d.standardise = s.choice("standardise", d.standardise, {"expert", "mixture"});
   {
     ConfigSection n(reader, s.child("network"), s.name("network"));
     d.net = read_network(n, d.net);

@@ -47,13 +47,30 @@ Discriminator::Discriminator(torch::Tensor expert, const DiscriminatorConfig& cf
   if (expert_.dim() != 2 || expert_.size(0) < 1) throw Error("discriminator: no expert samples");
   if (cfg_.heads < 1 || cfg_.batch < 1 || cfg_.epochs < 0) throw Error("discriminator: heads and batch must be positive");
   if (cfg_.penalty_heads < 0) throw Error("discriminator: penalty_heads must be >= 0 (0: every head)");
-  mean_ = expert_.mean(0);
-  // A feature that never varies in the demonstrations keeps unit scale (no division by zero).
-  const torch::Tensor sd = expert_.size(0) > 1 ? expert_.std(0) : torch::ones_like(mean_);
-  std_ = torch::where(sd > 1e-6, sd, torch::ones_like(sd));
+  if (cfg_.standardise != "expert" && cfg_.standardise != "mixture")
+    throw Error("discriminator: standardise must be expert or mixture, not '" + cfg_.standardise + "'");
+  set_statistics({});
   net_ = FeatureNet(static_cast<int>(expert_.size(1)), cfg_.heads, cfg_.net);
   optimizer_ = std::make_unique<torch::optim::Adam>(net_->parameters(), torch::optim::AdamOptions(cfg_.lr));
   replay_ = torch::empty({0, expert_.size(1)});
+}
+
+void Discriminator::set_statistics(const torch::Tensor& policy) {
+  const auto moments = [](const torch::Tensor& x) {
+    const torch::Tensor mean = x.mean(0);
+    return std::pair{mean, x.size(0) > 1 ? x.var(0, /*unbiased=*/true) : torch::zeros_like(mean)};
+  };
+  auto [mean, var] = moments(expert_);
+  if (policy.defined() && policy.size(0) > 0) {
+    // Moments of the equal mixture: within-part variances averaged plus the spread of the means.
+    const auto [policy_mean, policy_var] = moments(policy);
+    var = 0.5 * (var + policy_var) + 0.25 * (mean - policy_mean).square();
+    mean = 0.5 * (mean + policy_mean);
+  }
+  mean_ = mean;
+  // A feature that never varies keeps unit scale (no division by zero).
+  const torch::Tensor sd = var.sqrt();
+  std_ = torch::where(sd > 1e-6, sd, torch::ones_like(sd));
 }
 
 torch::Tensor Discriminator::forward(const torch::Tensor& features) { return net_->forward(standardise(features)); }
@@ -99,6 +116,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
   }
   replay_ = cfg_.replay > 0 ? torch::cat({replay_, policy}).slice(0, std::max<std::int64_t>(0, replay_.size(0) + n_new - cfg_.replay))
                             : policy;
+  if (cfg_.standardise == "mixture") set_statistics(replay_);
   const std::int64_t pool = replay_.size(0), per_epoch = std::min(pool, n_new);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   int steps = 0;

@@ -27,6 +27,11 @@ struct DiscriminatorConfig {
   double reward_clip = 10.0;      // bce: -log(1 - D) clipped here (seed 000)
   double reward_offset = 0.0;     // added to every reward: 1 keeps the hinge ensemble's [-1, 1] non-negative,
                                   // so that ending an episode early never pays
+  // Input statistics: "expert" (the demonstrations') or "mixture" (half demonstrations, half the
+  // replay pool: the distribution each minibatch is drawn from, renewed at every update). With
+  // expert statistics a feature the clip barely varies is blown up on the policy's side, the
+  // ensemble scores every policy sample far below -1 and the clipped reward goes flat.
+  std::string standardise = "expert";
 };
 
 // Losses on [batch, heads] outputs, averaged over heads.
@@ -52,7 +57,7 @@ struct DiscriminatorStats {
 class Discriminator {
  public:
   // `expert` [samples, input]: the features it learns to tell apart, also the source of the
-  // standardisation statistics.
+  // standardisation statistics (with the policy's, under "mixture").
   Discriminator(torch::Tensor expert, const DiscriminatorConfig& cfg, std::uint64_t seed);
 
   int input_size() const { return static_cast<int>(expert_.size(1)); }
@@ -72,6 +77,8 @@ class Discriminator {
  private:
   torch::Tensor standardise(const torch::Tensor& x) const { return (x - mean_) / std_; }
   torch::Tensor loss_of(const torch::Tensor& expert_out, const torch::Tensor& policy_out) const;
+  // Sets mean_ and std_ from the expert's moments, mixed half and half with `policy`'s when defined.
+  void set_statistics(const torch::Tensor& policy);
 
   DiscriminatorConfig cfg_;
   torch::Tensor expert_, mean_, std_;

@@ -192,3 +192,63 @@ TEST(Discriminator, ReplayKeepsTheNewestSamplesUpToItsSize) {
   EXPECT_EQ(replay[4][0].item<float>(), 2.0f);
   EXPECT_TRUE(std::isfinite(d.reward(torch::ones({1, 1}))[0].item<double>()));
 }
+
+TEST(Discriminator, MixtureStandardisesByTheMinibatchDistribution) {
+  // Column 0: expert {0, 2} (mean 1, variance 2), policy {4, 6, 8} (mean 6, variance 4); the equal
+  // mixture has mean 3.5 and variance (2 + 4) / 2 + (6 - 1)^2 / 4 = 9.25. Column 1 never varies.
+  const torch::Tensor expert = t2({0, 1, 2, 1}, 2, 2), policy = t2({4, 1, 6, 1, 8, 1}, 3, 2);
+  const auto statistics = [&](const std::string& standardise) {
+    DiscriminatorConfig cfg;
+    cfg.standardise = standardise;
+    cfg.epochs = 0;
+    Discriminator d(expert, cfg, 1);
+    d.update(policy);
+    torch::serialize::OutputArchive out;
+    d.save(out);
+    std::ostringstream bytes;
+    out.save_to(bytes);
+    torch::serialize::InputArchive in;
+    std::istringstream is(bytes.str());
+    in.load_from(is);
+    torch::Tensor mean, sd;
+    in.read("mean", mean);
+    in.read("std", sd);
+    return std::pair{mean, sd};
+  };
+  const auto [mixture_mean, mixture_std] = statistics("mixture");
+  EXPECT_NEAR(mixture_mean[0].item<double>(), 3.5, 1e-6);
+  EXPECT_NEAR(mixture_std[0].item<double>(), std::sqrt(9.25), 1e-5);
+  EXPECT_NEAR(mixture_mean[1].item<double>(), 1.0, 1e-6);
+  EXPECT_EQ(mixture_std[1].item<double>(), 1.0);  // no spread: unit scale
+  const auto [expert_mean, expert_std] = statistics("expert");
+  EXPECT_NEAR(expert_mean[0].item<double>(), 1.0, 1e-6);
+  EXPECT_NEAR(expert_std[0].item<double>(), std::sqrt(2.0), 1e-6);
+
+  DiscriminatorConfig bad;
+  bad.standardise = "policy";
+  EXPECT_THROW(Discriminator(expert, bad, 1), Error);
+}
+
+TEST(Discriminator, MixtureKeepsTheEnsemblesRewardInformativeWhereTheClipBarelyVaries) {
+  // The expert holds feature 0 within 1e-4 of zero, the policy sits 0.05 away. By the expert's
+  // statistics a sample 0.01 away is already 100 standard deviations out: every head scores it
+  // below -1 and the clipped reward cannot tell it from the policy's. By the mixture's it can.
+  torch::manual_seed(2);
+  const torch::Tensor expert = torch::cat({torch::randn({512, 1}) * 1e-4, torch::randn({512, 1})}, 1);
+  const torch::Tensor policy = torch::cat({torch::randn({512, 1}) * 0.01 + 0.05, torch::randn({512, 1})}, 1);
+  const torch::Tensor near = t2({0.01f, 0.0f}, 1, 2), far = t2({0.05f, 0.0f}, 1, 2);
+  const auto gap = [&](const std::string& standardise) {
+    DiscriminatorConfig cfg;
+    cfg.loss = "hinge", cfg.heads = 8, cfg.gradient_penalty = 10.0, cfg.standardise = standardise;
+    cfg.net.hidden = {32, 32};
+    cfg.net.activation = "relu";
+    cfg.lr = 1e-3, cfg.epochs = 5, cfg.batch = 128;
+    torch::manual_seed(3);
+    Discriminator d(expert, cfg, 4);
+    for (int i = 0; i < 10; ++i) d.update(policy);
+    EXPECT_LT(d.reward(far).item<double>(), -0.3) << standardise;  // the policy's own place scores low
+    return d.reward(near).item<double>() - d.reward(far).item<double>();
+  };
+  EXPECT_LT(gap("expert"), 0.05);
+  EXPECT_GT(gap("mixture"), 0.3);
+}
