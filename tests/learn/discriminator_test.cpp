@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "core/error.hpp"
 #include "learn/discriminator.hpp"
@@ -14,6 +16,20 @@ namespace {
 
 torch::Tensor t2(std::vector<float> v, std::int64_t rows, std::int64_t cols) {
   return torch::from_blob(v.data(), {rows, cols}, torch::kFloat32).clone();
+}
+
+// One tensor of what the discriminator writes to its checkpoint.
+torch::Tensor saved(const Discriminator& d, const std::string& key) {
+  torch::serialize::OutputArchive out;
+  d.save(out);
+  std::ostringstream bytes;
+  out.save_to(bytes);
+  torch::serialize::InputArchive in;
+  std::istringstream is(bytes.str());
+  in.load_from(is);
+  torch::Tensor t;
+  in.read(key, t);
+  return t;
 }
 
 }  // namespace
@@ -178,15 +194,7 @@ TEST(Discriminator, ReplayKeepsTheNewestSamplesUpToItsSize) {
   Discriminator d(torch::zeros({4, 1}), cfg, 1);  // constant expert features: unit scale, no NaN
   d.update(torch::full({3, 1}, 1.0f));
   d.update(torch::full({4, 1}, 2.0f));
-  torch::serialize::OutputArchive out;
-  d.save(out);
-  std::ostringstream bytes;
-  out.save_to(bytes);
-  torch::serialize::InputArchive in;
-  std::istringstream is(bytes.str());
-  in.load_from(is);
-  torch::Tensor replay;
-  in.read("replay", replay);
+  const torch::Tensor replay = saved(d, "replay");
   ASSERT_EQ(replay.size(0), 5);
   EXPECT_EQ(replay[0][0].item<float>(), 1.0f);  // the oldest surviving sample
   EXPECT_EQ(replay[4][0].item<float>(), 2.0f);
@@ -203,17 +211,7 @@ TEST(Discriminator, MixtureStandardisesByTheMinibatchDistribution) {
     cfg.epochs = 0;
     Discriminator d(expert, cfg, 1);
     d.update(policy);
-    torch::serialize::OutputArchive out;
-    d.save(out);
-    std::ostringstream bytes;
-    out.save_to(bytes);
-    torch::serialize::InputArchive in;
-    std::istringstream is(bytes.str());
-    in.load_from(is);
-    torch::Tensor mean, sd;
-    in.read("mean", mean);
-    in.read("std", sd);
-    return std::pair{mean, sd};
+    return std::pair{saved(d, "mean"), saved(d, "std")};
   };
   const auto [mixture_mean, mixture_std] = statistics("mixture");
   EXPECT_NEAR(mixture_mean[0].item<double>(), 3.5, 1e-6);
