@@ -156,6 +156,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   if (iccgan) {  // seed 004 Table 1 and section 5.1
     d.loss = "hinge", d.heads = 32, d.gradient_penalty = 10.0, d.lr = 1e-5, d.batch = 512, d.replay = 8192;
     d.standardise = "mixture";  // seed 004 section 6.1: inputs normalised by statistics updated during training
+    d.penalty_of = "sum";       // seed 004's released code; each head's own let the humanoid's reward go flat
     d.net.hidden = {256, 128};
     d.net.activation = "relu";
   }
@@ -172,6 +173,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   d.heads = static_cast<int>(s.integer("heads", d.heads, 1, 1024));
   d.gradient_penalty = s.number("gradient_penalty", d.gradient_penalty, 0, 1e6);
   d.penalty_heads = static_cast<int>(s.integer("penalty_heads", d.penalty_heads, 0, 1024));
+  d.penalty_of = s.choice("penalty_of", d.penalty_of, {"heads", "sum"});
   d.lr = s.number("lr", d.lr, 1e-12, 1);
   d.epochs = static_cast<int>(s.integer("epochs", d.epochs, 0, 1000));
   d.batch = static_cast<int>(s.integer("batch", d.batch, 1, 1 << 20));

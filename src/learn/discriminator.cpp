@@ -36,6 +36,12 @@ torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points, con
   return sum / static_cast<double>(which.size());
 }
 
+torch::Tensor summed_gradient_penalty(FeatureNet& net, const torch::Tensor& points) {
+  const torch::Tensor x = points.detach().requires_grad_(true);
+  const torch::Tensor g = torch::autograd::grad({net->forward(x).sum()}, {x}, {}, /*retain_graph=*/true, /*create_graph=*/true)[0];
+  return (g.norm(2, 1) - 1.0).square().mean();
+}
+
 torch::Tensor gail_reward(const torch::Tensor& logits, double clip) {
   return torch::nn::functional::softplus(logits).clamp_max(clip).mean(1);
 }
@@ -47,6 +53,8 @@ Discriminator::Discriminator(torch::Tensor expert, const DiscriminatorConfig& cf
   if (expert_.dim() != 2 || expert_.size(0) < 1) throw Error("discriminator: no expert samples");
   if (cfg_.heads < 1 || cfg_.batch < 1 || cfg_.epochs < 0) throw Error("discriminator: heads and batch must be positive");
   if (cfg_.penalty_heads < 0) throw Error("discriminator: penalty_heads must be >= 0 (0: every head)");
+  if (cfg_.penalty_of != "heads" && cfg_.penalty_of != "sum")
+    throw Error("discriminator: penalty_of must be heads or sum, not '" + cfg_.penalty_of + "'");
   if (cfg_.standardise != "expert" && cfg_.standardise != "mixture")
     throw Error("discriminator: standardise must be expert or mixture, not '" + cfg_.standardise + "'");
   set_statistics({});
@@ -136,13 +144,15 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
         for (float& a : alpha) a = unit(rng_);
         const torch::Tensor a = torch::from_blob(alpha.data(), {b, 1}, torch::kFloat32).clone();
         std::vector<std::int64_t> heads;  // empty: all
-        if (cfg_.penalty_heads > 0 && cfg_.penalty_heads < cfg_.heads) {
+        if (cfg_.penalty_of == "heads" && cfg_.penalty_heads > 0 && cfg_.penalty_heads < cfg_.heads) {
           std::vector<std::int64_t> all(static_cast<std::size_t>(cfg_.heads));
           std::iota(all.begin(), all.end(), 0);
           std::shuffle(all.begin(), all.end(), rng_);
           heads.assign(all.begin(), all.begin() + cfg_.penalty_heads);
         }
-        const torch::Tensor penalty = gradient_penalty(net_, a * e + (1 - a) * p, heads);
+        const torch::Tensor points = a * e + (1 - a) * p;
+        const torch::Tensor penalty =
+            cfg_.penalty_of == "sum" ? summed_gradient_penalty(net_, points) : gradient_penalty(net_, points, heads);
         s.penalty += penalty.item<double>();
         loss = loss + cfg_.gradient_penalty * penalty;
       }

@@ -20,6 +20,11 @@ struct DiscriminatorConfig {
   // Heads whose penalty each minibatch takes, drawn anew each time (0: all). The penalty costs one
   // double backward per head; a random subset is an unbiased estimate of eq. 4's mean over heads.
   int penalty_heads = 0;
+  // Whose gradient the penalty holds near norm 1: "heads" (seed 004 eq. 3, each head's own, averaged)
+  // or "sum" (the gradient of the heads' sum, as seed 004's released code computes it: one double
+  // backward, and N heads that agree each keep a slope near 1/N, so a policy sample a few
+  // standardised units from the demonstrations is not yet scored below -1 by all of them).
+  std::string penalty_of = "heads";
   double lr = 3e-4;
   int epochs = 2;                 // passes per iteration over as many samples as the iteration collected
   int batch = 256;                // policy samples per minibatch (and as many expert samples)
@@ -42,6 +47,8 @@ torch::Tensor hinge_loss(const torch::Tensor& expert_scores, const torch::Tensor
 // Seed 004 eq. 3: mean over heads of E[(|grad_x D_i(x)| - 1)^2] at `points` (with a graph, so the
 // penalty trains the network: double backward); over the listed heads only when `heads` is given.
 torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points, const std::vector<std::int64_t>& heads = {});
+// E[(|grad_x sum_i D_i(x)| - 1)^2] at `points`, with a graph (penalty_of: sum).
+torch::Tensor summed_gradient_penalty(FeatureNet& net, const torch::Tensor& points);
 // Per-sample rewards [batch]: GAIL's -log(1 - sigmoid(logit)) = softplus(logit), clipped at `clip`
 // and averaged over heads; ICCGAN's mean over heads of clip(D_i, -1, 1) (seed 004 eq. 5).
 torch::Tensor gail_reward(const torch::Tensor& logits, double clip);

@@ -87,6 +87,50 @@ TEST(GradientPenalty, EachHeadsGradientNormAgainstOneWithGradientsThroughIt) {
   EXPECT_NEAR(g[1][1].item<double>(), 0.0, 1e-5);
 }
 
+TEST(GradientPenalty, OfTheSumHoldsTheHeadsSummedGradientAgainstOne) {
+  NetworkConfig cfg;
+  cfg.hidden = {};
+  FeatureNet net(2, 2, cfg);
+  const torch::Tensor w = net->named_parameters()["layers.0.weight"];
+  {
+    torch::NoGradGuard no_grad;
+    w.copy_(t2({3.0f, 4.0f, 0.6f, 0.8f}, 2, 2));  // summed gradient (3.6, 4.8): norm 6
+  }
+  const torch::Tensor gp = summed_gradient_penalty(net, torch::randn({7, 2}));
+  EXPECT_NEAR(gp.item<double>(), 25.0, 1e-4);  // each head's own: (16 + 0) / 2 = 8
+  // d/dw_i of (|w_0 + w_1| - 1)^2 = 2 * 5 * (0.6, 0.8) for both heads.
+  gp.backward();
+  const torch::Tensor g = w.grad();
+  for (int head = 0; head < 2; ++head) {
+    EXPECT_NEAR(g[head][0].item<double>(), 6.0, 1e-4);
+    EXPECT_NEAR(g[head][1].item<double>(), 8.0, 1e-4);
+  }
+}
+
+TEST(Discriminator, PenaltyOfTheSumLetsAgreeingHeadsKeepASlopeNearOneOverN) {
+  // Two clusters about 5.7 standardised units apart: with each head's own gradient held at 1 the
+  // heads score the far side beyond -1; with the sum's, 16 agreeing heads share one unit of slope.
+  torch::manual_seed(5);
+  const torch::Tensor expert = torch::randn({512, 2}) + 2.0, policy = torch::randn({512, 2}) - 2.0;
+  auto mean_policy_score = [&](const std::string& penalty_of) {
+    DiscriminatorConfig cfg;
+    cfg.loss = "hinge", cfg.heads = 16, cfg.gradient_penalty = 10.0, cfg.penalty_of = penalty_of;
+    cfg.lr = 1e-3, cfg.epochs = 4, cfg.batch = 128;
+    cfg.net.hidden = {32};
+    Discriminator d(expert, cfg, 3);
+    for (int i = 0; i < 30; ++i) d.update(policy);
+    torch::NoGradGuard no_grad;
+    return d.forward(policy).mean().item<double>();
+  };
+  const double each = mean_policy_score("heads"), sum = mean_policy_score("sum");
+  std::cout << "mean policy score, penalty of each head: " << each << ", of the sum: " << sum << "\n";
+  EXPECT_LT(each, -1.0);
+  EXPECT_GT(sum, -1.0);
+  DiscriminatorConfig bad;
+  bad.penalty_of = "mean";
+  EXPECT_THROW(Discriminator(expert, bad, 1), Error);
+}
+
 TEST(GradientPenalty, ASubsetOfHeadsAveragesOnlyThoseAndAllSingletonsAverageToTheFullPenalty) {
   NetworkConfig cfg;
   cfg.hidden = {};

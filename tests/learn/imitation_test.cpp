@@ -173,6 +173,7 @@ TEST(AdversarialConfig, ErrorsNameTheConfigAndTheProblem) {
             std::string::npos);
   EXPECT_NE(build(", episodes: 5").find("2 episodes, but 'episodes' asks for 5"), std::string::npos);
   EXPECT_NE(build(", transition: sas").find("rewards.transition"), std::string::npos);
+  EXPECT_NE(build(", penalty_of: mean").find("rewards.penalty_of"), std::string::npos);
   const std::string missing = error_of([&] {
     Trainer t(parse_train_config(gail_config(dir / "nowhere.csv", 1), "osc.yaml"), oscillator_options());
   });
@@ -186,6 +187,23 @@ TEST(AdversarialConfig, ErrorsNameTheConfigAndTheProblem) {
                        "the shared observation parts in 'features'"),
             std::string::npos)
       << other;
+}
+
+TEST(AdversarialConfig, TheEnsemblesDefaultsAreSeed004s) {
+  const auto dir = test::temp_dir("adversarial_defaults");
+  write_demonstrations(dir / "expert.csv", oscillator_expert(2));
+  std::string yaml = gail_config(dir / "expert.csv", 1);
+  yaml.replace(yaml.find("source: gail"), 12, "source: iccgan");
+  Trainer t(parse_train_config(yaml, "osc.yaml"), oscillator_options());
+  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  ASSERT_NE(source, nullptr);
+  const DiscriminatorConfig& d = source->discriminator().config();
+  EXPECT_EQ(d.loss, "hinge");
+  EXPECT_EQ(d.heads, 32);
+  EXPECT_EQ(d.gradient_penalty, 10.0);
+  EXPECT_EQ(d.penalty_of, "sum");
+  EXPECT_EQ(d.standardise, "mixture");
+  EXPECT_EQ(d.replay, 8192);
 }
 
 TEST(AdversarialConfig, AnExpertWithAnotherBodyIsMatchedByItsLayout) {
