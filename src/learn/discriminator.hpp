@@ -2,7 +2,8 @@
 // Discriminators for adversarial imitation. One network with N output heads over shared layers:
 // N = 1 with binary cross-entropy is GAIL's discriminator (seeds 000, 002); N = 32 with hinge
 // loss and a gradient penalty is ICCGAN's ensemble (seed 004 eqs. 2-5). Inputs are standardised
-// by fixed statistics of the expert features, saved with the network.
+// by statistics of the expert features (or of their mixture with the replay pool, renewed at each
+// update), saved with the network.
 #include <torch/torch.h>
 
 #include <random>
