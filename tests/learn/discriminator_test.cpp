@@ -32,6 +32,17 @@ torch::Tensor saved(const Discriminator& d, const std::string& key) {
   return t;
 }
 
+// A linear net of two heads, D_i(x) = w_i . x + b_i with w_0 = (3, 4) and w_1 = (0.6, 0.8): the
+// gradient is w_i wherever x is.
+FeatureNet linear_two_head_net() {
+  NetworkConfig cfg;
+  cfg.hidden = {};
+  FeatureNet net(2, 2, cfg);
+  torch::NoGradGuard no_grad;
+  net->named_parameters()["layers.0.weight"].copy_(t2({3.0f, 4.0f, 0.6f, 0.8f}, 2, 2));
+  return net;
+}
+
 }  // namespace
 
 TEST(DiscriminatorLoss, HingeIsTheMeanOverHeadsOfEachHeadsMargins) {
@@ -66,15 +77,8 @@ TEST(DiscriminatorReward, EnsembleIsTheMeanOfHeadsClippedToPlusMinusOne) {
 }
 
 TEST(GradientPenalty, EachHeadsGradientNormAgainstOneWithGradientsThroughIt) {
-  // A linear net D_i(x) = w_i . x + b_i: the gradient is w_i wherever x is.
-  NetworkConfig cfg;
-  cfg.hidden = {};
-  FeatureNet net(2, 2, cfg);
+  FeatureNet net = linear_two_head_net();  // |w_0| = 5, |w_1| = 1
   const torch::Tensor w = net->named_parameters()["layers.0.weight"];
-  {
-    torch::NoGradGuard no_grad;
-    w.copy_(t2({3.0f, 4.0f, 0.6f, 0.8f}, 2, 2));  // |w_0| = 5, |w_1| = 1
-  }
   const torch::Tensor points = torch::randn({7, 2});
   const torch::Tensor gp = gradient_penalty(net, points);
   EXPECT_NEAR(gp.item<double>(), ((5.0 - 1.0) * (5.0 - 1.0) + 0.0) / 2, 1e-4);
@@ -88,14 +92,8 @@ TEST(GradientPenalty, EachHeadsGradientNormAgainstOneWithGradientsThroughIt) {
 }
 
 TEST(GradientPenalty, OfTheSumHoldsTheHeadsSummedGradientAgainstOne) {
-  NetworkConfig cfg;
-  cfg.hidden = {};
-  FeatureNet net(2, 2, cfg);
+  FeatureNet net = linear_two_head_net();  // summed gradient (3.6, 4.8): norm 6
   const torch::Tensor w = net->named_parameters()["layers.0.weight"];
-  {
-    torch::NoGradGuard no_grad;
-    w.copy_(t2({3.0f, 4.0f, 0.6f, 0.8f}, 2, 2));  // summed gradient (3.6, 4.8): norm 6
-  }
   const torch::Tensor gp = summed_gradient_penalty(net, torch::randn({7, 2}));
   EXPECT_NEAR(gp.item<double>(), 25.0, 1e-4);  // each head's own: (16 + 0) / 2 = 8
   // d/dw_i of (|w_0 + w_1| - 1)^2 = 2 * 5 * (0.6, 0.8) for both heads.
