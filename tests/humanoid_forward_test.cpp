@@ -458,3 +458,36 @@ TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {
   EXPECT_TRUE(is_failure(r.termination));
   EXPECT_LT(env->elapsed(), 2.0);
 }
+
+TEST(HumanoidForward, FallLinksChooseWhichContactsEndTheEpisode) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.max_seconds = 1.0;
+  StepResult r;
+  std::mt19937_64 rng(1);
+  // Standing at rest: DeepMimic's root, chest and neck never touch, the feet always do.
+  auto standing = make_humanoid_forward_env(ch, nullptr, cfg);
+  standing->reset(rng);
+  EXPECT_EQ(run_zero_actions(*standing, r), 30);
+  EXPECT_EQ(r.termination, Termination::TimeLimit);
+  // The config's key reaches the env: a foot as a fall body ends the first step.
+  const YamlReader yaml("test.yaml");
+  const EnvFactory factory = make_env_factory(yaml.parse("{name: humanoid_forward, init: fixed, fall_links: [right_ankle]}", ""), yaml);
+  const std::unique_ptr<Env> on_feet = factory();
+  on_feet->reset(rng);
+  r = on_feet->step(Eigen::VectorXd::Zero(on_feet->action_size()));
+  EXPECT_EQ(r.termination, Termination::Fall);
+  cfg.fall_links = {"right_foot"};
+  EXPECT_THROW(
+      {
+        try {
+          make_humanoid_forward_env(ch, nullptr, cfg);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("no body 'right_foot'"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
+}

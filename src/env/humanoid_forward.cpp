@@ -185,6 +185,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   env_cfg.observations = cfg.observations;
   env_cfg.max_seconds = cfg.max_seconds;
   env_cfg.projectiles = cfg.projectiles;
+  env_cfg.fall_links = cfg.fall_links;
   // The clips are not the env's reference: they only supply starts and must not end episodes.
   auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
   const Skeleton sk = ch.skeleton;

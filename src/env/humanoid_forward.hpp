@@ -12,6 +12,7 @@
 // The experiment is the start of an episode: motion-capture poses (a random time on a clip) versus
 // a fixed engineered pose, both with a little noise on the joints.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "env/character_env.hpp"
@@ -31,6 +32,10 @@ struct HumanoidForwardConfig {
   double lateral_weight = 0.1;   // per m off the centre line
   double control_weight = 1e-3;  // per rad^2 of axis-angle PD targets (28 values for humanoid3d)
   double init_noise = 0.02;      // rad: uniform +- on each joint axis at every start
+  // Bodies whose ground contact is a fall. Empty: the character's own (DeepMimic's root, chest and
+  // neck), which lets a policy sit on its thighs and shuffle; seed 004 §5.2 ends a walk at any
+  // contact but the feet's.
+  std::vector<std::string> fall_links;
   // The policy's input: proprioception, as the paper's RL runs (joint angles and velocities, root
   // velocity, velocimeter, gyro, uprightness, end effectors). No phase: nothing is tracked.
   // Mocap starts fill a "links" history with the clip's poses before the start.
