@@ -13,7 +13,7 @@ run() {  # name, --set arguments...
   local name=$1; shift
   [ -f "$out/$name/checkpoint.pt" ] && grep -q "^250," "$out/$name/metrics.csv" && return 0
   if [ -f "$out/$name/checkpoint.pt" ]; then
-    "$mimic" train configs/reacher_gail.yaml -o "$out/$name" --resume > "$out/$name.log" 2>&1
+    "$mimic" train --resume -o "$out/$name" > "$out/$name.log" 2>&1
   else
     "$mimic" train configs/reacher_gail.yaml -o "$out/$name" "$@" > "$out/$name.log" 2>&1
   fi

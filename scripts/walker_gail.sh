@@ -24,7 +24,7 @@ train() {  # name
   if [ ${#resume[@]} -eq 0 ]; then
     "$mimic" train configs/walker_gail.yaml -o "$out/$name" --set rewards.0.transition=$t --set rewards.0.episodes=$n > "$out/$name.log" 2>&1
   else
-    "$mimic" train configs/walker_gail.yaml -o "$out/$name" --resume >> "$out/$name.log" 2>&1
+    "$mimic" train --resume -o "$out/$name" >> "$out/$name.log" 2>&1
   fi
 }
 export -f train; export out mimic

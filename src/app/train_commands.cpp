@@ -1,4 +1,4 @@
-// mimic train CONFIG.yaml [-o RUN] [--resume]; mimic bench train
+// mimic train CONFIG.yaml [-o RUN] [--resume] (or --resume -o RUN); mimic bench train
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -35,7 +35,7 @@ void add_train_commands(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   CLI::App* train = app.add_subcommand("train", "train a policy with PPO from a YAML config (see docs/training.md)");
-  train->add_option("config", args->config, "training config (.yaml)")->required()->check(CLI::ExistingFile);
+  train->add_option("config", args->config, "training config (.yaml); with --resume, default RUN/config.yaml")->check(CLI::ExistingFile);
   train->add_option("-o,--out", args->out, "run directory (default: runs/<config name>)");
   train->add_flag("--resume", args->resume, "continue the run in the run directory from its checkpoint");
   train->add_option("--iterations", args->iterations, "override the config's iteration count")->check(CLI::PositiveNumber);
@@ -43,6 +43,10 @@ void add_train_commands(CLI::App& app) {
   train->add_option("--set", args->settings, "override a config value: KEY.PATH=VALUE (e.g. ppo.clip=0.1, rewards.0.episodes=10); repeatable");
   train->callback([args] {
     if (args->resume && !args->settings.empty()) throw Error("--set: a resumed run keeps the config it was started with");
+    if (args->config.empty()) {
+      if (!args->resume || args->out.empty()) throw Error("train: a config is needed (or --resume -o RUN, which goes on with RUN/config.yaml)");
+      args->config = args->out / "config.yaml";
+    }
     const std::string source = args->config.string();
     TrainConfig cfg = parse_train_config(override_config(read_text_file(args->config), source, args->settings), source);
     if (args->iterations > 0) cfg.iterations = args->iterations;

@@ -1,5 +1,7 @@
 #include "learn/train_config.hpp"
 
+#include <algorithm>
+#include <optional>
 #include <thread>
 
 #include "core/config_section.hpp"
@@ -9,6 +11,54 @@
 namespace mimic {
 
 namespace {
+
+std::string flow_yaml(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "absent";
+  YAML::Emitter e;
+  e.SetMapFormat(YAML::Flow);
+  e.SetSeqFormat(YAML::Flow);
+  e << n;
+  return e.c_str();
+}
+
+// The first key path at which `a` and `b` differ ("" at the top), or nullopt.
+std::optional<std::string> first_difference(const YAML::Node& a, const YAML::Node& b, const std::string& path) {
+  const bool a_absent = !a.IsDefined() || a.IsNull(), b_absent = !b.IsDefined() || b.IsNull();
+  if (a_absent || b_absent) return a_absent == b_absent ? std::nullopt : std::optional(path);
+  if (a.Type() != b.Type()) return path;
+  const std::string prefix = path.empty() ? "" : path + ".";
+  if (a.IsScalar()) return a.Scalar() == b.Scalar() ? std::nullopt : std::optional(path);
+  if (a.IsSequence()) {
+    if (a.size() != b.size()) return path;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (auto d = first_difference(a[i], b[i], prefix + std::to_string(i))) return d;
+    return std::nullopt;
+  }
+  std::vector<std::string> keys;
+  for (const YAML::Node& m : {a, b})
+    for (const auto& kv : m) {
+      const std::string key = kv.first.as<std::string>();
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    }
+  for (const std::string& key : keys) {
+    if (path == "collect" && key == "threads") continue;  // the same results with any thread count
+    if (auto d = first_difference(a[key], b[key], prefix + key)) return d;
+  }
+  return std::nullopt;
+}
+
+YAML::Node node_at(YAML::Node n, const std::string& path) {
+  std::size_t start = 0;
+  while (!path.empty() && start <= path.size()) {
+    const std::size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    YAML::Node next = n.IsSequence() ? n[std::stoul(key)] : n[key];
+    n.reset(next);
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return n;
+}
 constexpr long kMaxLayer = 1 << 16;
 }  // namespace
 
@@ -191,6 +241,22 @@ std::string override_config(const std::string& text, const std::string& source, 
   YAML::Emitter out;
   out << root;
   return note + "\n" + out.c_str() + "\n";
+}
+
+std::string config_difference(const std::string& first, const std::string& first_label, const std::string& second,
+                              const std::string& second_label) {
+  auto load = [](const std::string& text, const std::string& label) {
+    try {
+      return YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+      throw Error(label + ": not valid YAML (" + e.msg + ")");
+    }
+  };
+  const YAML::Node a = load(first, first_label), b = load(second, second_label);
+  const std::optional<std::string> path = first_difference(a, b, "");
+  if (!path) return "";
+  return (path->empty() ? std::string("the whole config") : *path) + ": " + flow_yaml(node_at(a, *path)) + " in " + first_label + ", " +
+         flow_yaml(node_at(b, *path)) + " in " + second_label;
 }
 
 TrainConfig load_train_config(const std::filesystem::path& path) {

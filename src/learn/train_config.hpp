@@ -127,4 +127,11 @@ TrainConfig load_train_config(const std::filesystem::path& path);
 // lists them; Error naming the setting when a path does not fit the config.
 std::string override_config(const std::string& text, const std::string& source, const std::vector<std::string>& settings);
 
+// Where two configs differ in what they ask for — comments, layout and collect.threads (which
+// changes no result) aside: "rewards.0.features: [links, link_velocities] in run/config.yaml,
+// [links] in walk.yaml", each config named by its label; empty when they agree. Bad YAML is an
+// Error naming its label.
+std::string config_difference(const std::string& first, const std::string& first_label, const std::string& second,
+                              const std::string& second_label);
+
 }  // namespace mimic

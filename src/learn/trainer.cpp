@@ -201,6 +201,21 @@ void Trainer::Impl::update_adaptive_init(IterationMetrics& m) {
   m.set("init_std_ratio", (d.log_std().array().exp().rowwise() / sigma0.array()).mean());
 }
 
+namespace {
+
+// A resumed run must go on with the config it was started with: its networks, normalisers and
+// discriminators were built from it, and its config.yaml has to keep describing the checkpoint.
+// Another one (another file, an edit) would either fail deep in the checkpoint or, worse,
+// silently change learning rates or rewards half-way through.
+void require_same_config(const TrainConfig& cfg, const std::filesystem::path& saved_path) {
+  const std::string difference = config_difference(read_text_file(saved_path), saved_path.string(), cfg.text, cfg.source);
+  if (difference.empty()) return;
+  throw Error(cfg.source + ": differs from " + saved_path.string() + ", the config the run was started with (" + difference +
+              "); resume with `mimic train --resume -o " + saved_path.parent_path().string() + "` (--iterations and --threads may change)");
+}
+
+}  // namespace
+
 Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   const std::filesystem::path dir = opts.run_dir;
   const bool resume = opts.resume;
@@ -209,6 +224,7 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (resume && dir.empty()) throw Error("resume needs a run directory");
   if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
+  if (resume && std::filesystem::exists(dir / "config.yaml")) require_same_config(cfg, dir / "config.yaml");
   const std::string text = cfg.text;
   impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
   if (dir.empty()) return;

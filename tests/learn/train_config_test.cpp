@@ -159,6 +159,25 @@ TEST(OverrideConfig, SetsNestedKeysAndListElementsAndNamesBadPaths) {
   EXPECT_NE(error("ppo.clip=[1").find("not valid YAML"), std::string::npos);
 }
 
+TEST(ConfigDifference, NamesTheFirstKeyThatDiffersAndIgnoresCommentsLayoutAndThreads) {
+  const std::string text = "seed: 1\ncollect: {envs: 4, threads: 2}\nrewards:\n  - source: iccgan\n    features: [links]\n";
+  EXPECT_EQ(config_difference(text, "a.yaml", text, "b.yaml"), "");
+  EXPECT_EQ(config_difference(text, "a.yaml", "# a comment\nseed: 1\ncollect:\n  envs: 4\n  threads: 1\nrewards: [{source: iccgan, features: [links]}]\n", "b.yaml"), "");
+  EXPECT_EQ(config_difference(text, "a.yaml", "seed: 1\ncollect: {envs: 4}\nrewards: [{source: iccgan, features: [links, link_velocities]}]\n", "b.yaml"),
+            "rewards.0.features: [links] in a.yaml, [links, link_velocities] in b.yaml");
+  EXPECT_EQ(config_difference(text, "a.yaml", "seed: 2\ncollect: {envs: 4}\nrewards: [{source: iccgan, features: [links]}]\n", "b.yaml"),
+            "seed: 1 in a.yaml, 2 in b.yaml");
+  EXPECT_EQ(config_difference(text, "a.yaml", "collect: {envs: 4}\nrewards: [{source: iccgan, features: [links]}]\n", "b.yaml"),
+            "seed: 1 in a.yaml, absent in b.yaml");
+  EXPECT_EQ(config_difference(text, "a.yaml", text + "ppo: {clip: 0.1}\n", "b.yaml"), "ppo: absent in a.yaml, {clip: 0.1} in b.yaml");
+  try {
+    (void)config_difference("seed: [1\n", "run/config.yaml", text, "b.yaml");
+    FAIL() << "bad YAML was compared";
+  } catch (const mimic::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("run/config.yaml: not valid YAML"), std::string::npos) << e.what();
+  }
+}
+
 // Every config the project ships parses, and its environment builds (those on DeepMimic's
 // characters only where ../shared is present): a renamed key breaks this test, not a user's run.
 TEST(ShippedConfigs, ParseAndBuildTheirEnvironments) {

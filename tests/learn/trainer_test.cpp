@@ -195,6 +195,33 @@ TEST(Trainer, RefusesToOverwriteARunAndToResumeNothing) {
   }
 }
 
+TEST(Trainer, ResumeRefusesAConfigOtherThanTheRunsOwn) {
+  const auto dir = test::temp_dir("trainer_resume_config");
+  TrainOptions o;
+  o.run_dir = dir;
+  Trainer(config(walker_config(1, 1)), o).run();
+  o.resume = true;
+  // Another clip range for the same networks would load, and silently change the run.
+  std::string edited = walker_config(1, 1);
+  edited.replace(edited.find("ppo: {"), 6, "ppo: {clip: 0.1, ");
+  try {
+    Trainer t(parse_train_config(edited, "edited.yaml"), o);
+    FAIL() << "a run was resumed with another config";
+  } catch (const mimic::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("edited.yaml: differs from " + (dir / "config.yaml").string()), std::string::npos) << what;
+    EXPECT_NE(what.find("(ppo.clip: absent in " + (dir / "config.yaml").string() + ", 0.1 in edited.yaml)"), std::string::npos) << what;
+  }
+  // The same config with other comments and another thread count resumes, whatever its iteration
+  // count (--iterations overrides the parsed value).
+  std::string same = "# the walker, on two threads\n" + walker_config(1, 2);
+  TrainConfig longer = parse_train_config(same, "same.yaml");
+  longer.iterations = 2;
+  Trainer t(longer, o);
+  t.run();
+  EXPECT_EQ(t.iteration(), 2);
+}
+
 TEST(Trainer, BadCheckpointsAreErrorsNamingTheFile) {
   const auto dir = test::temp_dir("trainer_bad_checkpoint");
   Trainer t(config(walker_config(2, 1)));
