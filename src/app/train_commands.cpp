@@ -1,4 +1,4 @@
-// mimic train CONFIG.yaml [-o RUN] [--resume] (or --resume -o RUN); mimic bench train
+// mimic train CONFIG.yaml [-o RUN] [--resume] (or --resume -o RUN); mimic export RUN -o MODEL; mimic bench train
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -70,6 +70,31 @@ void add_train_commands(CLI::App& app) {
     trainer.run();
     spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stop.load() ? "stopped" : "done", trainer.iteration(),
                  trainer.samples(), (opts.run_dir / "checkpoint.pt").string());
+  });
+
+  // A run's checkpoint keeps everything training needs to go on (tens of MB for an imitation run:
+  // Adam moments, the discriminator's replay); a model to commit or ship needs only what acts.
+  struct ExportArgs {
+    std::filesystem::path run, out;
+  };
+  auto exp = std::make_shared<ExportArgs>();
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "an acting-only copy of a run (config.yaml, a slim checkpoint.pt, metrics.csv): for models/, eval, render, embedding");
+  export_cmd->add_option("run", exp->run, "training run directory (config.yaml + checkpoint.pt)")->required()->check(CLI::ExistingDirectory);
+  export_cmd->add_option("-o,--out", exp->out, "model directory to write")->required();
+  export_cmd->callback([exp] {
+    if (std::filesystem::exists(exp->out / "checkpoint.pt"))
+      throw Error(exp->out.string() + " already holds a checkpoint.pt: choose another directory or remove it");
+    // With its reward sources, so that the discriminators' scores stay available to the model.
+    const std::unique_ptr<Trainer> trainer = Trainer::load_policy(exp->run, true);
+    std::filesystem::create_directories(exp->out);
+    write_file_atomic(exp->out / "config.yaml", read_text_file(exp->run / "config.yaml"));
+    if (std::filesystem::exists(exp->run / "metrics.csv"))
+      write_file_atomic(exp->out / "metrics.csv", read_text_file(exp->run / "metrics.csv"));
+    trainer->export_model(exp->out / "checkpoint.pt");
+    const auto mb = [](const std::filesystem::path& p) { return static_cast<double>(std::filesystem::file_size(p)) / 1e6; };
+    spdlog::info("wrote {} ({:.1f} MB; the run's checkpoint: {:.1f} MB), iteration {}, {} samples", (exp->out / "checkpoint.pt").string(),
+                 mb(exp->out / "checkpoint.pt"), mb(exp->run / "checkpoint.pt"), trainer->iteration(), trainer->samples());
   });
 
   CLI::App* bench = app.add_subcommand("bench", "throughput figures");

@@ -48,6 +48,7 @@ class AdversarialRewardSource : public RewardSource {
   std::string name() const override { return name_; }
   std::vector<double> rewards(const Rollout& rollout) override;
   std::vector<std::pair<std::string, double>> update(const Rollout& rollout) override;
+  void drop_training_state() override { disc_.drop_training_state(); }
   void save(torch::serialize::OutputArchive& a) const override;
   void load(torch::serialize::InputArchive& a) override;
   Discriminator& discriminator() { return disc_; }

@@ -77,6 +77,7 @@ void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path)
   a.write("samples", torch::tensor(static_cast<std::int64_t>(t.samples)));
   a.write("wall_seconds", torch::tensor(t.wall_seconds, torch::kFloat64));
   a.write("config", bytes_tensor(t.cfg.text));
+  if (t.acting_only) a.write("acting_only", torch::tensor(static_cast<std::int64_t>(1)));
   a.write("input_size", torch::tensor(static_cast<std::int64_t>(t.collector->input_size())));
   a.write("action_size", torch::tensor(static_cast<std::int64_t>(t.collector->action_size())));
   OutputArchive policy, value, policy_opt, value_opt, rngs, sources;
@@ -135,6 +136,8 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
     if (in_size != t.collector->input_size() || act_size != t.collector->action_size())
       throw Error("saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
                   std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size()));
+    torch::Tensor acting_only;
+    t.acting_only = a.try_read("acting_only", acting_only);
     t.iteration = static_cast<int>(get(a, "iteration").item<std::int64_t>());
     t.samples = get(a, "samples").item<std::int64_t>();
     t.wall_seconds = get(a, "wall_seconds").item<double>();

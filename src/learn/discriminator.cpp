@@ -166,6 +166,11 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
   return s;
 }
 
+void Discriminator::drop_training_state() {
+  optimizer_->state().clear();
+  replay_ = torch::empty({0, expert_.size(1)});
+}
+
 void Discriminator::save(torch::serialize::OutputArchive& a) const {
   torch::serialize::OutputArchive net, opt;
   net_->save(net);

@@ -79,6 +79,9 @@ class Discriminator {
   DiscriminatorStats update(const torch::Tensor& policy);
 
   FeatureNet& net() { return net_; }
+  std::int64_t replay_rows() const { return replay_.size(0); }
+  // Forgets what only further training needs (Adam moments, the replay pool): for an exported model.
+  void drop_training_state();
   void save(torch::serialize::OutputArchive& a) const;
   void load(torch::serialize::InputArchive& a);
 

@@ -27,6 +27,8 @@ class RewardSource {
   virtual std::vector<double> rewards(const Rollout& rollout) = 0;
   // After the policy update; returns named metrics for the log.
   virtual std::vector<std::pair<std::string, double>> update(const Rollout&) { return {}; }
+  // For an exported model: forget what only further training needs (optimiser moments, replay).
+  virtual void drop_training_state() {}
   virtual void save(torch::serialize::OutputArchive&) const {}
   virtual void load(torch::serialize::InputArchive&) {}
 };

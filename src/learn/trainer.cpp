@@ -230,6 +230,9 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (dir.empty()) return;
   if (resume) {
     load_checkpoint(dir / "checkpoint.pt");
+    if (impl_->acting_only)
+      throw Error((dir / "checkpoint.pt").string() +
+                  ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
   } else {
     std::filesystem::create_directories(dir);
     write_file_atomic(dir / "config.yaml", text);
@@ -276,6 +279,14 @@ int Trainer::action_size() const { return impl_->collector->action_size(); }
 const TrainConfig& Trainer::config() const { return impl_->cfg; }
 void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(*impl_, path); }
 void Trainer::load_checkpoint(const std::filesystem::path& path) { read_checkpoint(*impl_, path); }
+
+void Trainer::export_model(const std::filesystem::path& path) {
+  impl_->learner->policy_optimizer().state().clear();
+  impl_->learner->value_optimizer().state().clear();
+  for (auto& source : impl_->rewards) source.second->drop_training_state();
+  impl_->acting_only = true;
+  write_checkpoint(*impl_, path);
+}
 
 std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources) {
   const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";

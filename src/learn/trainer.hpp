@@ -50,6 +50,11 @@ class Trainer {
 
   void save_checkpoint(const std::filesystem::path& path) const;  // atomic
   void load_checkpoint(const std::filesystem::path& path);
+  // An acting-only checkpoint (atomic): networks, normalisers and discriminators, without the
+  // optimisers' moments and the discriminators' replay pools — a few MB where a run's checkpoint
+  // takes tens. It loads for eval, render, record and embedding; resuming it is refused, since
+  // training would go on from fresh moments and an empty pool. This trainer drops them too.
+  void export_model(const std::filesystem::path& path);
   // Mean environment return of `episodes` episodes acting with the policy's mean (no noise);
   // uses its own environments and generator, so training is not disturbed.
   double evaluate(int episodes, std::uint64_t seed = 12345);

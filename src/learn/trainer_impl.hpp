@@ -31,6 +31,7 @@ struct Trainer::Impl {
   int iteration = 0;
   long long samples = 0;
   double wall_seconds = 0;  // over all segments of a resumed run
+  bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
 
   Impl(TrainConfig c, TrainOptions o);

@@ -419,6 +419,26 @@ TEST(ClipDemonstrations, ALinkHistoryHoldsTheClipsPreviousPoses) {
   }
 }
 
+TEST(AdversarialImitation, AnExportedModelKeepsTheDiscriminatorsScoresAndDropsItsReplay) {
+  const auto dir = test::temp_dir("gail_export");
+  write_demonstrations(dir / "expert.csv", oscillator_expert(4));
+  const TrainConfig cfg = parse_train_config(
+      gail_config(dir / "expert.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2"), "osc.yaml");
+  Trainer t(cfg, oscillator_options());
+  t.run();
+  auto& disc = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second).discriminator();
+  ASSERT_EQ(disc.replay_rows(), 1500);
+  const torch::Tensor scores = disc.reward(disc.expert());
+  t.save_checkpoint(dir / "run.pt");
+  t.export_model(dir / "model.pt");
+  Trainer model(cfg, oscillator_options());
+  model.load_checkpoint(dir / "model.pt");
+  auto& loaded = dynamic_cast<AdversarialRewardSource&>(*model.impl().rewards[0].second).discriminator();
+  EXPECT_TRUE(torch::equal(loaded.reward(loaded.expert()), scores));
+  EXPECT_EQ(loaded.replay_rows(), 0);
+  EXPECT_LT(std::filesystem::file_size(dir / "model.pt"), std::filesystem::file_size(dir / "run.pt"));
+}
+
 TEST(AdversarialImitation, ACheckpointedRunResumesExactlyWithItsDiscriminator) {
   const auto dir = test::temp_dir("gail_resume");
   write_demonstrations(dir / "expert.csv", oscillator_expert(4));

@@ -222,6 +222,34 @@ TEST(Trainer, ResumeRefusesAConfigOtherThanTheRunsOwn) {
   EXPECT_EQ(t.iteration(), 2);
 }
 
+TEST(Trainer, AnExportedModelActsAsItsRunWithoutOptimiserStateAndIsNotResumed) {
+  const auto dir = test::temp_dir("trainer_export");
+  TrainOptions o;
+  o.run_dir = dir / "run";
+  Trainer(config(walker_config(2, 1)), o).run();
+  const std::unique_ptr<Trainer> run = Trainer::load_policy(dir / "run");
+  ASSERT_FALSE(run->impl().learner->policy_optimizer().state().empty());  // Adam has moments after two iterations
+  const Eigen::VectorXd input = Eigen::VectorXd::LinSpaced(run->input_size(), -1.0, 1.0);
+  const Eigen::VectorXd action = run->act(input);
+  std::filesystem::create_directories(dir / "model");
+  write_file_atomic(dir / "model" / "config.yaml", read_text_file(dir / "run" / "config.yaml"));
+  run->export_model(dir / "model" / "checkpoint.pt");
+  const std::unique_ptr<Trainer> model = Trainer::load_policy(dir / "model");
+  EXPECT_EQ(model->act(input), action);
+  EXPECT_EQ(model->iteration(), 2);
+  EXPECT_TRUE(model->impl().learner->policy_optimizer().state().empty());
+  EXPECT_TRUE(model->impl().learner->value_optimizer().state().empty());
+  EXPECT_LT(std::filesystem::file_size(dir / "model" / "checkpoint.pt"), std::filesystem::file_size(dir / "run" / "checkpoint.pt"));
+  o.run_dir = dir / "model";
+  o.resume = true;
+  try {
+    Trainer t(config(walker_config(2, 1)), o);
+    FAIL() << "an exported model was resumed";
+  } catch (const mimic::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("checkpoint.pt: an exported model"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Trainer, BadCheckpointsAreErrorsNamingTheFile) {
   const auto dir = test::temp_dir("trainer_bad_checkpoint");
   Trainer t(config(walker_config(2, 1)));
