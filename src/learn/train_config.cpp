@@ -59,6 +59,7 @@ YAML::Node node_at(YAML::Node n, const std::string& path) {
   }
   return n;
 }
+
 constexpr long kMaxLayer = 1 << 16;
 }  // namespace
 
