@@ -113,22 +113,44 @@ void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path)
   write_file_atomic(path, out.str());
 }
 
+namespace {
+
+// Opens the archive after the checks LibTorch does not make; errors without the file's name.
+void open_archive(const std::filesystem::path& path, InputArchive& a) {
+  const std::string bytes = read_text_file(path);
+  // LibTorch's archives are zip files; anything else is refused here (LibTorch's zip reader
+  // leaks memory on non-zip input, and "not a zip archive" says more).
+  if (bytes.size() < 22 || bytes.compare(0, 4, "PK\x03\x04") != 0)
+    throw Error("not a mimic checkpoint (not a LibTorch zip archive" + std::string(bytes.empty() ? ": empty file" : "") + ")");
+  // A cut file (an interrupted copy, a full disk) has lost the zip's closing directory record.
+  const std::size_t tail = bytes.size() > 65557 ? bytes.size() - 65557 : 0;
+  if (bytes.rfind("PK\x05\x06") == std::string::npos || bytes.rfind("PK\x05\x06") < tail)
+    throw Error("checkpoint is truncated (its zip directory is missing): " + std::to_string(bytes.size()) + " bytes");
+  std::istringstream in(bytes);
+  a.load_from(in);
+}
+
+}  // namespace
+
+bool is_exported_checkpoint(const std::filesystem::path& path) {
+  try {
+    InputArchive a;
+    open_archive(path, a);
+    torch::Tensor flag;
+    return a.try_read("acting_only", flag);
+  } catch (const c10::Error& e) {
+    throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
+  }
+}
+
 void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
   const std::string where = path.string();
   if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
   try {
-    const std::string bytes = read_text_file(path);
-    // LibTorch's archives are zip files; anything else is refused here (LibTorch's zip reader
-    // leaks memory on non-zip input, and "not a zip archive" says more).
-    if (bytes.size() < 22 || bytes.compare(0, 4, "PK\x03\x04") != 0)
-      throw Error("not a mimic checkpoint (not a LibTorch zip archive" + std::string(bytes.empty() ? ": empty file" : "") + ")");
-    // A cut file (an interrupted copy, a full disk) has lost the zip's closing directory record.
-    const std::size_t tail = bytes.size() > 65557 ? bytes.size() - 65557 : 0;
-    if (bytes.rfind("PK\x05\x06") == std::string::npos || bytes.rfind("PK\x05\x06") < tail)
-      throw Error("checkpoint is truncated (its zip directory is missing): " + std::to_string(bytes.size()) + " bytes");
-    std::istringstream in(bytes);
     InputArchive a;
-    a.load_from(in);
+    open_archive(path, a);
     const auto format = get(a, "format").item<std::int64_t>();
     if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
     const auto in_size = get(a, "input_size").item<std::int64_t>();

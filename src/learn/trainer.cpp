@@ -225,14 +225,15 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
   if (resume && std::filesystem::exists(dir / "config.yaml")) require_same_config(cfg, dir / "config.yaml");
+  // Before the reward sources are built: an exported model's expert files may not travel with it.
+  if (resume && is_exported_checkpoint(dir / "checkpoint.pt"))
+    throw Error((dir / "checkpoint.pt").string() +
+                ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
   const std::string text = cfg.text;
   impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
   if (dir.empty()) return;
   if (resume) {
     load_checkpoint(dir / "checkpoint.pt");
-    if (impl_->acting_only)
-      throw Error((dir / "checkpoint.pt").string() +
-                  ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
   } else {
     std::filesystem::create_directories(dir);
     write_file_atomic(dir / "config.yaml", text);

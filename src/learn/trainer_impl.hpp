@@ -50,5 +50,7 @@ struct Trainer::Impl {
 // Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong.
 void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path);
 void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path);
+// Whether the file is an acting-only export (mimic export), read without building a trainer.
+bool is_exported_checkpoint(const std::filesystem::path& path);
 
 }  // namespace mimic

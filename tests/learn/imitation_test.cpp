@@ -437,6 +437,21 @@ TEST(AdversarialImitation, AnExportedModelKeepsTheDiscriminatorsScoresAndDropsIt
   EXPECT_TRUE(torch::equal(loaded.reward(loaded.expert()), scores));
   EXPECT_EQ(loaded.replay_rows(), 0);
   EXPECT_LT(std::filesystem::file_size(dir / "model.pt"), std::filesystem::file_size(dir / "run.pt"));
+  // Resuming the model is refused as an exported model even where its expert file did not travel
+  // with it (the refusal comes before the discriminator loads its demonstrations).
+  std::filesystem::create_directories(dir / "model");
+  std::filesystem::rename(dir / "model.pt", dir / "model" / "checkpoint.pt");
+  write_file_atomic(dir / "model" / "config.yaml", cfg.text);
+  std::filesystem::remove(dir / "expert.csv");
+  TrainOptions o = oscillator_options();
+  o.run_dir = dir / "model";
+  o.resume = true;
+  try {
+    Trainer resumed(cfg, o);
+    FAIL() << "an exported model was resumed";
+  } catch (const mimic::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("checkpoint.pt: an exported model"), std::string::npos) << e.what();
+  }
 }
 
 TEST(AdversarialImitation, ACheckpointedRunResumesExactlyWithItsDiscriminator) {
