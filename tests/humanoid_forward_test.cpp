@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -437,6 +438,52 @@ TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
     EXPECT_EQ(run_zero_actions(*mocap, r), 15) << "seed " << seed;
     EXPECT_EQ(r.termination, Termination::TimeLimit);
   }
+}
+
+// Seed 004 §5.2: an episode started on a non-cyclic clip ends where the clip ends; a cyclic one
+// runs to the time limit.
+TEST(HumanoidForward, MocapStartsOnANonCyclicClipEndWithTheClip) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const int elbow = ch.skeleton.find("right_elbow");
+  ASSERT_GE(elbow, 0);
+  const Joint& joint = ch.skeleton.joints[static_cast<std::size_t>(elbow)];
+  // 1 s standing, the right elbow at 0.2 + 0.5 t rad: the start's clip time reads off the elbow.
+  Clip clip;
+  clip.name = "elbow_ramp";
+  clip.skeleton = ch.skeleton;
+  for (int f = 0; f <= static_cast<int>(clip.fps); ++f) {
+    Pose p = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.01));
+    p.rot[static_cast<std::size_t>(elbow)] = Quat(Eigen::AngleAxisd(0.2 + 0.5 * f / clip.fps, joint.axis));
+    clip.frames.push_back(p);
+  }
+  ASSERT_EQ(clip.loop, LoopMode::None);
+  HumanoidForwardConfig cfg;
+  cfg.init_noise = 0.0;
+  cfg.max_seconds = 2.0;
+  auto env = make_humanoid_forward_env(ch, std::make_shared<const Clip>(clip), cfg);
+  const double dt = 1.0 / 30;
+  std::mt19937_64 rng(3);
+  StepResult r;
+  for (int i = 0; i < 4; ++i) {
+    env->reset(rng);
+    const double t0 = (revolute_angle(joint, env->world().pose().rot[static_cast<std::size_t>(elbow)]) - 0.2) / 0.5;
+    ASSERT_GE(t0, 0.0);
+    ASSERT_LE(t0, 1.0);
+    const int expected = std::max(1, static_cast<int>(std::ceil((1.0 - t0) / dt - 1e-6)));
+    EXPECT_EQ(run_zero_actions(*env, r), expected) << "start at " << t0 << " s";
+    EXPECT_EQ(r.termination, Termination::ClipEnd);
+    EXPECT_FALSE(is_failure(r.termination));
+  }
+  // The same clip looping: to the limit. A start set directly (evaluation's) has no clip end.
+  clip.loop = LoopMode::Wrap;
+  auto cyclic = make_humanoid_forward_env(ch, std::make_shared<const Clip>(clip), cfg);
+  cyclic->reset(rng);
+  EXPECT_EQ(run_zero_actions(*cyclic, r), 60);
+  EXPECT_EQ(r.termination, Termination::TimeLimit);
+  env->reset(env->state_on_clip(clip, 0.9));
+  EXPECT_EQ(run_zero_actions(*env, r), 60);
+  EXPECT_EQ(r.termination, Termination::TimeLimit);
 }
 
 TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {

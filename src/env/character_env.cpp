@@ -136,6 +136,7 @@ Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
 Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   time_ = init.time;
   elapsed_ = 0.0;
+  clip_left_ = init.clip_left;
   history_.clear();
   // Past poses are placed kinematically only to read their link frames, before the real start.
   const auto keep = static_cast<std::size_t>(obs_.link_history() - 1);
@@ -197,6 +198,7 @@ bool CharacterEnv::below_reference() const {
 Termination CharacterEnv::check_termination() const {
   if (cfg_.early_termination && (fall_contact() || below_reference())) return Termination::Fall;
   if (reference_ && reference_->loop != LoopMode::Wrap && time_ >= reference_->duration() - 1e-9) return Termination::ClipEnd;
+  if (elapsed_ >= clip_left_ - 1e-9) return Termination::ClipEnd;
   if (elapsed_ >= cfg_.max_seconds - 1e-9) return Termination::TimeLimit;
   return Termination::None;
 }

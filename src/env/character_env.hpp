@@ -4,6 +4,7 @@
 // limit, or at the end of a non-cyclic reference clip. Tasks add reward terms. The ground is a
 // Terrain (sim/terrain.hpp); pushes and projectiles (sim/perturbation.hpp) perturb the character.
 #include <functional>
+#include <limits>
 #include <memory>
 
 #include "env/observations.hpp"
@@ -38,11 +39,14 @@ struct CharacterEnvConfig {
 // Where an episode starts: a pose, its velocities, and the time on the reference clip. `past`:
 // poses one control step apart before `pose`, oldest first, that seed the "links" history (seed
 // 004: the discriminator sees frames t-3...t+1 from the first step on); empty: the start repeats.
+// `clip_left`: seconds after which the episode ends as ClipEnd, for starts drawn from a non-cyclic
+// clip that is not the env's reference (seed 004 ends a kick where its clip ends).
 struct InitState {
   Pose pose;
   PoseVelocity velocity;
   double time = 0.0;
   std::vector<Pose> past;
+  double clip_left = std::numeric_limits<double>::infinity();
 };
 // The clip's state at `t`, with the `past` poses at t - past * dt, ..., t - dt (before the clip's
 // start a wrapping clip wraps, others hold their first frame).
@@ -123,6 +127,7 @@ class CharacterEnv : public Env {
   Pusher pusher_;
   std::unique_ptr<ProjectileLauncher> launcher_;
   double time_ = 0.0, elapsed_ = 0.0;
+  double clip_left_ = std::numeric_limits<double>::infinity();  // the start's InitState::clip_left
   double max_step_reward_ = 0.0;
 };
 

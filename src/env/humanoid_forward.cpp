@@ -186,7 +186,8 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   env_cfg.max_seconds = cfg.max_seconds;
   env_cfg.projectiles = cfg.projectiles;
   env_cfg.fall_links = cfg.fall_links;
-  // The clips are not the env's reference: they only supply starts and must not end episodes.
+  // The clips are not the env's reference: they supply starts (and a non-cyclic one's end), not
+  // the phase a reference would (nothing is tracked).
   auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
   const Skeleton sk = ch.skeleton;
   const double noise = cfg.init_noise;
@@ -196,6 +197,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
       const auto [clip, when] = draw_clip_time(clips, rng);
       InitState s = place_at_track_start(self->state_on_clip(*clip, when));
       s.time = 0.0;
+      if (clip->loop != LoopMode::Wrap) s.clip_left = clip->duration() - when;  // seed 004: a kick ends with its clip
       perturb_joints(s.pose, sk, noise, rng);
       return s;
     });

@@ -22,7 +22,7 @@ namespace mimic {
 struct HumanoidForwardConfig {
   enum class Init {
     FixedPose,  // the character's rest pose standing at rest: the engineered start
-    Mocap,      // the pose and velocities at a uniformly random time on the clip
+    Mocap,      // the pose and velocities at a uniformly random time on the clip (to its end if it does not loop)
   };
   Init init = Init::Mocap;
   double max_seconds = 10.0;  // TimeLimit
@@ -54,8 +54,9 @@ struct HumanoidForwardConfig {
 };
 
 // The task's environment (actions: axis-angle PD targets). `clip` gives Mocap's starts and must
-// fit `ch`; FixedPose ignores it (it may be null). The clip never ends an episode. Throws Error on
-// a missing or unfitting clip or a negative weight, noise or speed.
+// fit `ch`; FixedPose ignores it (it may be null). A Mocap start on a non-cyclic clip (kick, punch)
+// ends its episode where the clip ends (ClipEnd, not a failure; seed 004 §5.2), a cyclic clip's at
+// max_seconds. Throws Error on a missing or unfitting clip or a negative weight, noise or speed.
 std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
                                                         std::shared_ptr<const Clip> clip,
                                                         const HumanoidForwardConfig& cfg = {});

@@ -195,7 +195,7 @@ TEST(ShippedConfigs, ParseAndBuildTheirEnvironments) {
     EXPECT_GT(env->action_size(), 0);
     ++built;
   }
-  EXPECT_GE(parsed, 14);
+  EXPECT_GE(parsed, 19);
   if (shared_data_dir().empty()) std::cout << "[ SKIPPED  ] ../shared/data absent: humanoid configs parsed, not built\n";
   else EXPECT_EQ(built, parsed);
 }
