@@ -26,7 +26,13 @@ for clip in "${clips[@]}"; do
   [ -f "$demos" ] || "$mimic" record-clip configs/humanoid_walk_iccgan_links.yaml --clip "$motions/humanoid3d_$clip.txt" --passes 8 -o "$demos"
   run="$out/$clip"
   if [ -f "$run/checkpoint.pt" ]; then
-    "$mimic" train --resume -o "$run" --threads "$threads" >> "$run.log" 2>&1
+    # A finished clip is not resumed again (that would only rewrite its checkpoint) nor re-evaluated.
+    iterations=$(awk '/^iterations:/ {print $2}' "$run/config.yaml")
+    if grep -q "^$iterations," "$run/metrics.csv" 2>/dev/null; then
+      [ -f "$run.json" ] && [ -f "$run.mp4" ] && continue
+    else
+      "$mimic" train --resume -o "$run" --threads "$threads" >> "$run.log" 2>&1
+    fi
   else
     "$mimic" train "$config" -o "$run" --threads "$threads" > "$run.log" 2>&1
   fi
