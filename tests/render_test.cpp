@@ -106,6 +106,24 @@ TEST(LineChart, DrawsEverySeriesWithGapsAtMissingValues) {
   EXPECT_THROW(mimic::line_chart_svg(c), mimic::Error);
 }
 
+TEST(LineChart, ShadesABandUnderTheLinesAndFitsTheAxesToIt) {
+  mimic::LineChart c;
+  c.series = {{"a", {0, 1}, {1, 2}, {0, 1}, {2, 4}}};
+  const std::string svg = mimic::line_chart_svg(c);
+  // Plot box: x 70..550, y 40..370 for values 0..4 (the band's range, not only the line's 1..2):
+  // the high edge left to right, then the low edge back.
+  EXPECT_NE(svg.find("points='70.0,205.0 550.0,40.0 550.0,287.5 70.0,370.0 '"), std::string::npos) << svg;
+  EXPECT_LT(svg.find("<polygon"), svg.find("<polyline"));  // no band hides a line
+  // A point without a band splits it, as a missing value splits a line.
+  c.series = {{"a", {0, 1, 2, 3}, {1, 2, 2, 1}, {0, NAN, 0, 0}, {2, 3, 3, 2}}};
+  const std::string split = mimic::line_chart_svg(c);
+  std::size_t polygons = 0;
+  for (std::size_t at = split.find("<polygon"); at != std::string::npos; at = split.find("<polygon", at + 1)) ++polygons;
+  EXPECT_EQ(polygons, 2u);
+  c.series = {{"a", {0, 1}, {1, 2}, {0}, {2}}};
+  EXPECT_THROW(mimic::line_chart_svg(c), mimic::Error);
+}
+
 TEST(LineChart, LongLegendNamesWidenThePictureNotCutOff) {
   mimic::LineChart c;
   c.series = {{"a", {0, 1}, {0, 1}}};

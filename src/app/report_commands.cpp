@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
@@ -35,7 +36,7 @@ struct EvalSummary {
   std::string run, clip;
   double error_mean = NAN, error_std = NAN, normalised_return = NAN, episode_length = NAN, return_mean = NAN;
   long falls = -1, down = -1, trials = 0;
-  std::vector<double> masses, frames;  // robustness
+  std::vector<double> masses, frames, frames_std, max_frames;  // robustness (NaN: not in the file)
 };
 
 double number_or_nan(const YamlReader& r, const YAML::Node& map, const char* key, const std::string& where) {
@@ -66,6 +67,8 @@ EvalSummary read_eval_json(const std::filesystem::path& path) {
     for (const YAML::Node& p : rob) {
       s.masses.push_back(r.number(r.member(p, "mass", "a robustness point"), "\"mass\""));
       s.frames.push_back(r.number(r.member(p, "frames_mean", "a robustness point"), "\"frames_mean\""));
+      s.frames_std.push_back(number_or_nan(r, p, "frames_std", "a robustness point"));
+      s.max_frames.push_back(number_or_nan(r, p, "max_frames", "a robustness point"));
     }
   }
   return s;
@@ -121,16 +124,24 @@ LineChart learning_chart(const PlotArgs& a) {
   return chart;
 }
 
-// Seed 004 Fig. 7: frames survived against projectile mass, one line per evaluation.
+// Seed 004 Fig. 7: frames survived against projectile mass, one line per evaluation, shaded ± one
+// standard deviation of the trials, cut at 0 and at the trials' length (frames cannot go past them).
 LineChart robustness_chart(const PlotArgs& a) {
   LineChart chart;
   chart.x_label = "projectile mass (kg)";
-  chart.y_label = "frames survived (mean of trials)";
+  chart.y_label = "frames survived (mean, shaded ± s.d. of trials)";
   chart.title = a.title.empty() ? "Robustness to projectiles" : a.title;
   for (std::size_t i = 0; i < a.inputs.size(); ++i) {
     const EvalSummary e = read_eval_json(a.inputs[i]);
     if (e.masses.empty()) throw Error(a.inputs[i].string() + ": no robustness figures (evaluate with mimic eval --robustness)");
-    chart.series.push_back({name_of(a, i, a.inputs[i]), e.masses, e.frames});
+    ChartSeries s{name_of(a, i, a.inputs[i]), e.masses, e.frames};
+    for (std::size_t j = 0; j < e.masses.size(); ++j) {
+      const double sd = e.frames_std[j], top = std::isfinite(e.max_frames[j]) ? e.max_frames[j] : e.frames[j] + sd;
+      const double none = std::numeric_limits<double>::quiet_NaN();  // older files have no spread: no band
+      s.band_low.push_back(std::isfinite(sd) ? std::max(0.0, e.frames[j] - sd) : none);
+      s.band_high.push_back(std::isfinite(sd) ? std::min(top, e.frames[j] + sd) : none);
+    }
+    chart.series.push_back(std::move(s));
   }
   return chart;
 }

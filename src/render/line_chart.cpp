@@ -47,10 +47,15 @@ std::string line_chart_svg(const LineChart& c) {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   for (const auto& s : c.series) {
     if (s.x.size() != s.y.size()) throw Error("chart series '" + s.name + "': x and y differ in length");
+    const bool band = !s.band_low.empty() || !s.band_high.empty();
+    if (band && (s.band_low.size() != s.x.size() || s.band_high.size() != s.x.size()))
+      throw Error("chart series '" + s.name + "': its band's low and high values must be as many as its points");
     for (std::size_t i = 0; i < s.x.size(); ++i)
       if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
         x0 = std::min(x0, s.x[i]), x1 = std::max(x1, s.x[i]);
         y0 = std::min(y0, s.y[i]), y1 = std::max(y1, s.y[i]);
+        if (band && std::isfinite(s.band_low[i]) && std::isfinite(s.band_high[i]))
+          y0 = std::min(y0, s.band_low[i]), y1 = std::max(y1, s.band_high[i]);
       }
   }
   if (!std::isfinite(x0)) throw Error("chart '" + c.title + "': no finite points to draw");
@@ -81,6 +86,25 @@ std::string line_chart_svg(const LineChart& c) {
   svg += fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='#444'/>\n", left, top, pw, ph);
   svg += fmt::format("<text x='{:.1f}' y='{:.1f}' text-anchor='middle'>{}</text>\n", left + pw / 2, c.height - 10.0, svg_escape(c.x_label));
   svg += fmt::format("<text transform='translate(16 {:.1f}) rotate(-90)' text-anchor='middle'>{}</text>\n", top + ph / 2, svg_escape(c.y_label));
+  // Bands first, so that no band hides another series' line.
+  for (std::size_t k = 0; k < c.series.size(); ++k) {
+    const auto& s = c.series[k];
+    if (s.band_low.empty()) continue;
+    std::string upper, lower;  // one polygon per run of points with a finite band
+    auto flush = [&] {
+      if (!upper.empty()) svg += fmt::format("<polygon fill='{}' fill-opacity='0.15' stroke='none' points='{}{}'/>\n", colours[k % 8], upper, lower);
+      upper.clear(), lower.clear();
+    };
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !std::isfinite(s.band_low[i]) || !std::isfinite(s.band_high[i])) {
+        flush();
+        continue;
+      }
+      upper += fmt::format("{:.1f},{:.1f} ", px(s.x[i]), py(s.band_high[i]));
+      lower = fmt::format("{:.1f},{:.1f} ", px(s.x[i]), py(s.band_low[i])) + lower;
+    }
+    flush();
+  }
   for (std::size_t k = 0; k < c.series.size(); ++k) {
     const auto& s = c.series[k];
     const char* colour = colours[k % 8];

@@ -10,6 +10,9 @@ namespace mimic {
 struct ChartSeries {
   std::string name;
   std::vector<double> x, y;
+  // Optional shaded band from band_low to band_high at each x (a spread around y, as seed 004
+  // Fig. 7's ± one standard deviation): both empty, or both as long as x.
+  std::vector<double> band_low = {}, band_high = {};
 };
 
 struct LineChart {
@@ -18,7 +21,7 @@ struct LineChart {
   int width = 720, height = 420;
 };
 
-// The SVG text; Error when there is nothing finite to draw or x and y sizes differ.
+// The SVG text; Error when there is nothing finite to draw or a series' x, y or band sizes differ.
 std::string line_chart_svg(const LineChart& chart);
 // The chart to `out`: .svg as written by line_chart_svg, .png rasterised from it by ffmpeg's SVG
 // decoder (librsvg). Atomic: a failure leaves no partial file. Error naming the file otherwise.
