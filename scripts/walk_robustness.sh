@@ -23,9 +23,9 @@ declare -A models=([tracking]=models/humanoid_walk_tracking [iccgan]=models/huma
 for name in tracking iccgan iccgan_7.96M; do
   json="$out/$name.json"
   [ -f "$json" ] && continue
+  # mimic eval writes its JSON atomically at the end: a killed evaluation leaves none to skip.
   "$mimic" eval "${models[$name]}" --clip "$clip" --episodes 1 --trials 1 --robustness "$masses" \
-    --robustness-trials "$trials" --json "$json.tmp" > "$out/$name.log" 2>&1
-  mv "$json.tmp" "$json"
+    --robustness-trials "$trials" --json "$json" > "$out/$name.log" 2>&1
 done
 "$mimic" plot "$out/tracking.json" "$out/iccgan.json" "$out/iccgan_7.96M.json" \
   --names "tracking, 19.5 M samples" "ICCGAN, 20.0 M samples" "ICCGAN, 7.96 M samples" \
