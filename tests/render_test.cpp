@@ -21,6 +21,12 @@ using namespace mimic;
 
 namespace {
 
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
 std::string run(const std::string& cmd) {
   std::string out;
   if (std::FILE* p = ::popen(cmd.c_str(), "r")) {
@@ -97,9 +103,7 @@ TEST(LineChart, DrawsEverySeriesWithGapsAtMissingValues) {
   c.title = "return <vs> samples";
   c.series = {{"a", {0, 1, 2, 3}, {1, 2, NAN, 4}}, {"b", {0, 1}, {0, 3}}};
   const std::string svg = mimic::line_chart_svg(c);
-  std::size_t polylines = 0;
-  for (std::size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++polylines;
-  EXPECT_EQ(polylines, 3u);  // series a is split by its NaN
+  EXPECT_EQ(occurrences(svg, "<polyline"), 3u);  // series a is split by its NaN
   EXPECT_NE(svg.find("return &lt;vs&gt; samples"), std::string::npos);
   EXPECT_NE(svg.find(">b</text>"), std::string::npos);
   c.series = {{"empty", {0}, {NAN}}};
@@ -116,10 +120,7 @@ TEST(LineChart, ShadesABandUnderTheLinesAndFitsTheAxesToIt) {
   EXPECT_LT(svg.find("<polygon"), svg.find("<polyline"));  // no band hides a line
   // A point without a band splits it, as a missing value splits a line.
   c.series = {{"a", {0, 1, 2, 3}, {1, 2, 2, 1}, {0, NAN, 0, 0}, {2, 3, 3, 2}}};
-  const std::string split = mimic::line_chart_svg(c);
-  std::size_t polygons = 0;
-  for (std::size_t at = split.find("<polygon"); at != std::string::npos; at = split.find("<polygon", at + 1)) ++polygons;
-  EXPECT_EQ(polygons, 2u);
+  EXPECT_EQ(occurrences(mimic::line_chart_svg(c), "<polygon"), 2u);
   c.series = {{"a", {0, 1}, {1, 2}, {0}, {2}}};
   EXPECT_THROW(mimic::line_chart_svg(c), mimic::Error);
 }
