@@ -64,6 +64,34 @@ TEST(ContextEnv, AppendsTheOneHotAndRedrawsItEveryPeriod) {
   EXPECT_THROW(ContextEnv(std::make_unique<PlanarWalkerEnv>(), 1, 4), Error);
 }
 
+TEST(ContextEnv, AHeldContextOutlastsDrawsAndResetsUntilReleased) {
+  ContextEnv env(std::make_unique<PlanarWalkerEnv>(), 3, 2);
+  std::mt19937_64 rng(5);
+  env.reset(rng);
+  env.hold_context(2);
+  EXPECT_TRUE(env.context_held());
+  EXPECT_EQ(env.period(), 2);
+  for (int episode = 0; episode < 3; ++episode) {
+    EXPECT_EQ(shown(env.reset(rng), 3), 2);
+    for (int t = 0; t < 12; ++t) {
+      const StepResult r = env.step(Eigen::VectorXd::Zero(env.action_size()));
+      EXPECT_EQ(shown(r.observation, 3), 2) << "episode " << episode << ", step " << t;
+      if (r.done()) break;
+    }
+  }
+  EXPECT_THROW(env.hold_context(-1), Error);
+  env.release_context();
+  EXPECT_FALSE(env.context_held());
+  std::set<int> seen;
+  env.reset(rng);
+  for (int t = 0; t < 30; ++t) {
+    const StepResult r = env.step(Eigen::VectorXd::Zero(env.action_size()));
+    seen.insert(shown(r.observation, 3));
+    if (r.done()) env.reset(rng);
+  }
+  EXPECT_GT(seen.size(), 1u);  // drawing again: 15 draws among three contexts
+}
+
 TEST(ContextEnv, ConfiguredOnAnyEnvironment) {
   const YamlReader r("ctx.yaml");
   const EnvFactory f = make_env_factory(r.parse("{name: planar_walker, context: {count: 2, period: 150}}", "bad"), r);

@@ -2,7 +2,8 @@
 // and fall rate; for a character with a reference clip (the env's own, or --clip), the imitation
 // error over one cycle from evenly spaced phases and the normalised return; with --robustness,
 // seed 004's projectile test (frames survived per cube mass); with --latency, the policy's
-// forward-pass time at batch 1 and, for an adversarial run, its discriminators'. A table on the terminal, and the
+// forward-pass time at batch 1 and, for an adversarial run, its discriminators'; with --switch, a
+// policy over behaviour contexts changing behaviour on command. A table on the terminal, and the
 // same figures as JSON with --json.
 #include <spdlog/spdlog.h>
 
@@ -17,6 +18,7 @@
 #include "env/character_env.hpp"
 #include "env/context_env.hpp"
 #include "env/env_factory.hpp"
+#include "learn/context_switch.hpp"
 #include "learn/imitation_eval.hpp"
 #include "learn/runtime_cost.hpp"
 #include "learn/trainer.hpp"
@@ -42,6 +44,8 @@ struct EvalArgs {
   int episodes = 20, trials = 20;
   int context = -1;  // a behaviour context held for the imitation trials (-1: none given)
   bool latency = false;
+  std::vector<int> switches;  // behaviour contexts whose every ordered pair is a switch to measure
+  double switch_seconds = 5.0;
   std::vector<double> masses;  // robustness: projectile masses (kg)
   int robustness_trials = 20;
   double robustness_seconds = 10.0;
@@ -139,6 +143,40 @@ std::string latency(const EvalArgs& args, const Trainer& trainer) {
   return json + "]}";
 }
 
+// Seed 000's context switches: every ordered pair of the listed contexts, each held switch_seconds.
+std::string context_switches(const EvalArgs& args, const Trainer& trainer) {
+  const std::unique_ptr<Env> env = trainer.make_env();
+  auto* contexts = dynamic_cast<ContextEnv*>(env.get());
+  if (!contexts) throw Error(args.run.string() + ": --switch: this run's environment has no behaviour context");
+  if (args.switches.size() < 2) throw Error(args.run.string() + ": --switch needs two or more contexts, e.g. --switch 0,1");
+  const CharacterEnv* character = character_of(*env);
+  const double hz = character ? character->config().sim.control_hz : 30.0;
+  const int hold = std::max(2, static_cast<int>(std::lround(args.switch_seconds * hz)));
+  spdlog::info("  switches        context held {:.2f} s, then the other for as long; {} trials a pair from the env's own starts (mean actions); "
+               "speed: horizontal, of the root, over each hold's second half",
+               hold / hz, args.trials);
+  std::string json = ", \"switches\": [";
+  bool first = true;
+  for (int from : args.switches) {
+    for (int to : args.switches) {
+      if (from == to) continue;
+      const SwitchReport r = measure_switch(
+          *contexts, [&trainer](const Eigen::VectorXd& input) { return trainer.act(input); }, trainer.config().policy.net.history, from,
+          to, args.trials, hold, args.seed);
+      spdlog::info("    {} -> {}       fell {} before the switch, {} after; speed {:.2f} +- {:.2f} -> {:.2f} +- {:.2f} m/s", from, to,
+                   r.fell_before, r.fell_after, mean_of(r.speed_before), std_of(r.speed_before), mean_of(r.speed_after),
+                   std_of(r.speed_after));
+      json += fmt::format("{}{{\"from\": {}, \"to\": {}, \"trials\": {}, \"hold_seconds\": {}, \"fell_before\": {}, \"fell_after\": {}, "
+                          "\"speed_before_mean\": {}, \"speed_before_std\": {}, \"speed_after_mean\": {}, \"speed_after_std\": {}}}",
+                          first ? "" : ", ", from, to, r.trials, r.hold_seconds, r.fell_before, r.fell_after,
+                          json_number(mean_of(r.speed_before)), json_number(std_of(r.speed_before)), json_number(mean_of(r.speed_after)),
+                          json_number(std_of(r.speed_after)));
+      first = false;
+    }
+  }
+  return json + "]";
+}
+
 void evaluate(const EvalArgs& args) {
   const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args.run);
   const EpisodeStats s = trainer->run_episodes(args.episodes, args.seed, !args.stochastic);
@@ -189,6 +227,7 @@ void evaluate(const EvalArgs& args) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
   if (!args.masses.empty()) json += robustness(args, *trainer);
+  if (!args.switches.empty()) json += context_switches(args, *trainer);
   if (args.latency) json += latency(args, *trainer);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
@@ -214,6 +253,12 @@ void add_eval_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   ev->add_option("--robustness-seconds", args->robustness_seconds, "longest trial (s)")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_option("--switch", args->switches, "behaviour contexts, e.g. 0,1: measure the switch between every ordered pair (a run with env.context)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  ev->add_option("--switch-seconds", args->switch_seconds, "how long each context of a switch is held")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();

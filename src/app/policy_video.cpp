@@ -8,6 +8,7 @@
 #include "app/policy_video.hpp"
 #include "core/error.hpp"
 #include "env/character_env.hpp"
+#include "env/context_env.hpp"
 #include "learn/frame_history.hpp"
 #include "learn/trainer.hpp"
 #include "render/offscreen.hpp"
@@ -30,6 +31,14 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   if (!env->physics_model() || !data) throw Error("its environment has nothing to draw");
   const int history = trainer.config().policy.net.history;
 
+  // Contexts held in turn from the first step on (validated before anything is written).
+  auto* behaviours = dynamic_cast<ContextEnv*>(env.get());
+  if (!opts.contexts.empty() && !behaviours) throw Error("--contexts: its environment has no behaviour context");
+  for (int c : opts.contexts)
+    if (c < 0 || c >= behaviours->contexts())
+      throw Error("--contexts: context " + std::to_string(c) + " is outside the run's 0 to " + std::to_string(behaviours->contexts() - 1));
+  if (!opts.contexts.empty()) behaviours->hold_context(opts.contexts.front());
+
   std::mt19937_64 rng(opts.seed);
   FrameHistory frames(history);
   auto start_episode = [&] { frames.reset(env->reset(rng)); };
@@ -43,6 +52,7 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   const int every = std::max(1, static_cast<int>(std::lround(1.0 / (opts.fps * control_dt))));
   const double fps = 1.0 / (every * control_dt);
   const int steps = static_cast<int>(std::lround(opts.seconds / control_dt));
+  const int context_steps = std::max(1, static_cast<int>(std::lround(opts.context_seconds / control_dt)));
 
   // The ghost: the reference pose at the env's clip time, in a second data of the same model.
   const auto* character = dynamic_cast<const CharacterEnv*>(env.get());
@@ -55,6 +65,11 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   Eigen::Vector3d smoothed = Eigen::Vector3d::Zero();
   double episode_return = 0;
   for (int t = 1; t <= steps; ++t) {
+    if (behaviours && !opts.contexts.empty() && t % context_steps == 0) {
+      const int next = opts.contexts[static_cast<std::size_t>(t / context_steps) % opts.contexts.size()];
+      if (next != behaviours->context()) spdlog::info("  {:.2f} s: context {}", t * control_dt, next);
+      behaviours->hold_context(next);
+    }
     if (t > 1) r = env->step(trainer.act(frames.stacked()));
     episode_return += r.reward();
     frames.push(r.observation);

@@ -18,6 +18,10 @@ struct PolicyVideoOptions {
   int width = 640, height = 480;
   std::uint64_t seed = 1;
   bool ghost = false;  // the environment's reference clip drawn translucent over the character
+  // A policy over behaviour contexts: hold these in turn, each for context_seconds (empty: the
+  // environment draws its own).
+  std::vector<int> contexts;
+  double context_seconds = 5.0;
   CameraSpec camera{Vec3(0, 0, 0.9), 4.0, 90.0, -12.0};  // lookat z: height of the point followed
 };
 

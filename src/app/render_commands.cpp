@@ -34,6 +34,8 @@ void add_render_commands(CLI::App& app) {
     std::filesystem::path input, output, controller;
     double mass = 70.0;
     std::string builtin;
+    std::vector<int> contexts;
+    double context_seconds = 5.0;
     LoadOptions load;
     ClipVideoOptions video;
   };
@@ -45,17 +47,25 @@ void add_render_commands(CLI::App& app) {
   render->add_option("--seconds", args->video.seconds, "length (default: the clip's duration)");
   render->add_option("--width", args->video.width, "pixels")->capture_default_str()->check(CLI::Range(16, 1280));
   render->add_option("--height", args->video.height, "pixels")->capture_default_str()->check(CLI::Range(16, 720));
+  render->add_option("--contexts", args->contexts, "a run over behaviour contexts: hold these in turn, e.g. 0,1 (default: drawn as in training)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  render->add_option("--context-seconds", args->context_seconds, "how long each of --contexts is held")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   add_load_options(*render, args->load);
   render->callback([args] {
     if (std::filesystem::is_directory(args->input)) {
       PolicyVideoOptions o;
       o.width = args->video.width, o.height = args->video.height, o.ghost = args->video.ghost;
+      o.contexts = args->contexts, o.context_seconds = args->context_seconds;
       if (args->video.seconds > 0) o.seconds = args->video.seconds;
       const PolicyVideoStats s = render_policy_video(args->input, args->output, o);
       spdlog::info("wrote {} ({} frames at {:.1f} fps); {} episode(s) ended", args->output.string(), s.frames, s.fps, s.episodes.size());
       for (const auto& [ret, why] : s.episodes) spdlog::info("  episode return {:.2f}, ended by {}", ret, to_string(why));
       return;
     }
+    if (!args->contexts.empty()) throw Error(args->input.string() + ": --contexts is for a training run's policy, not a clip");
     const Clip clip = load_motion(args->input, args->load);
     const CharacterModel ch = character_for(clip, args->input, args->load);
     const int frames = render_clip_video(ch, clip, args->output, args->video);

@@ -26,7 +26,8 @@ Eigen::VectorXd ContextEnv::with_context(const Eigen::VectorXd& obs) const {
 Eigen::VectorXd ContextEnv::reset(std::mt19937_64& rng) {
   const Eigen::VectorXd obs = inner_->reset(rng);
   rng_.seed(rng());
-  context_ = std::uniform_int_distribution<int>(0, contexts_ - 1)(rng_);
+  const int drawn = std::uniform_int_distribution<int>(0, contexts_ - 1)(rng_);
+  if (!held_) context_ = drawn;  // drawn either way: a held context leaves the episode's draws as they were
   steps_ = 0;
   return with_context(obs);
 }
@@ -34,7 +35,10 @@ Eigen::VectorXd ContextEnv::reset(std::mt19937_64& rng) {
 StepResult ContextEnv::step(const Eigen::VectorXd& action) {
   StepResult r = inner_->step(action);
   ++steps_;
-  if (period_ > 0 && steps_ % period_ == 0) context_ = std::uniform_int_distribution<int>(0, contexts_ - 1)(rng_);
+  if (period_ > 0 && steps_ % period_ == 0) {
+    const int drawn = std::uniform_int_distribution<int>(0, contexts_ - 1)(rng_);
+    if (!held_) context_ = drawn;
+  }
   r.observation = with_context(r.observation);
   return r;
 }
@@ -42,6 +46,11 @@ StepResult ContextEnv::step(const Eigen::VectorXd& action) {
 void ContextEnv::set_context(int c) {
   if (c < 0 || c >= contexts_) throw Error("context " + std::to_string(c) + " is outside [0, " + std::to_string(contexts_) + ")");
   context_ = c;
+}
+
+void ContextEnv::hold_context(int c) {
+  set_context(c);
+  held_ = true;
 }
 
 }  // namespace mimic

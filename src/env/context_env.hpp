@@ -25,14 +25,22 @@ class ContextEnv : public Env {
   mjData_* physics_data() const override { return inner_->physics_data(); }
 
   int context() const { return context_; }
-  void set_context(int c);  // Error outside [0, contexts)
+  void set_context(int c);  // Error outside [0, contexts); the next draw may change it
+  // Holds context c (Error outside [0, contexts)) through draws and resets until release_context():
+  // a user or a high-level controller choosing the behaviour. The observation shows it from the
+  // next step or reset on.
+  void hold_context(int c);
+  void release_context() { held_ = false; }
+  bool context_held() const { return held_; }
   int contexts() const { return contexts_; }
+  int period() const { return period_; }  // steps between draws (0: only at reset)
   Env& inner() { return *inner_; }  // the wrapped environment (e.g. to pose its character from a clip)
 
  private:
   Eigen::VectorXd with_context(const Eigen::VectorXd& obs) const;
   std::unique_ptr<Env> inner_;
   int contexts_, period_, context_ = 0, steps_ = 0;
+  bool held_ = false;
   std::mt19937_64 rng_;  // seeded from reset's generator: re-draws replay with the episode
 };
 
