@@ -126,6 +126,15 @@ file(WRITE ${OUT}/walker_run_broken/checkpoint.pt "garbage")
 file(COPY ${OUT}/walker.yaml DESTINATION ${OUT}/walker_run_broken)
 file(RENAME ${OUT}/walker_run_broken/walker.yaml ${OUT}/walker_run_broken/config.yaml)
 run_fails("checkpoint.pt: not a mimic checkpoint" train ${OUT}/walker.yaml -o ${OUT}/walker_run_broken --resume)
+# Fine-tuning: a new run under a changed config from the walker run's weights; counters start at 0.
+run_ok(train ${OUT}/walker.yaml -o ${OUT}/walker_fine --init-from ${OUT}/walker_run --set policy.learn_std=false --set policy.log_std=-2 --iterations 1)
+expect_in("${LAST_OUT}" "weights from ${OUT}/walker_run: policy, value, normalisers and 0 of 1 reward sources' state; action noise held at the config's log_std -2")
+expect_in("${LAST_OUT}" "done after 1 iterations (128 samples)")
+run_fails("--resume excludes --init-from" train ${OUT}/walker.yaml -o ${OUT}/walker_fine --resume --init-from ${OUT}/walker_run)
+run_fails("walker_run_broken/checkpoint.pt: not a mimic checkpoint" train ${OUT}/walker.yaml -o ${OUT}/walker_fine2 --init-from ${OUT}/walker_run_broken)
+if(EXISTS ${OUT}/walker_fine2)
+  message(FATAL_ERROR "a refused --init-from left a run directory behind")
+endif()
 
 # Imitation: --set overrides, demonstrations recorded from the run, GAIL from them, behavioural
 # cloning, and evaluation.

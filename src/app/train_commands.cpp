@@ -27,7 +27,7 @@ std::string cell(const IterationMetrics& m, const char* name, const char* format
 
 void add_train_commands(CLI::App& app) {
   struct Args {
-    std::filesystem::path config, out, bench_config;
+    std::filesystem::path config, out, bench_config, init_from;
     bool resume = false;
     int iterations = 0, threads = -1;
     std::vector<std::string> settings;
@@ -38,6 +38,11 @@ void add_train_commands(CLI::App& app) {
   train->add_option("config", args->config, "training config (.yaml); with --resume, default RUN/config.yaml")->check(CLI::ExistingFile);
   train->add_option("-o,--out", args->out, "run directory (default: runs/<config name>)");
   train->add_flag("--resume", args->resume, "continue the run in the run directory from its checkpoint");
+  train->add_option("--init-from", args->init_from,
+                    "start a new run from another run's weights (RUN or a checkpoint; an exported model too): policy, value, normalisers, "
+                    "discriminators; fresh optimisers and counters")
+      ->check(CLI::ExistingPath)
+      ->excludes("--resume");
   train->add_option("--iterations", args->iterations, "override the config's iteration count")->check(CLI::PositiveNumber);
   train->add_option("--threads", args->threads, "override collect.threads (0: every core)")->check(CLI::NonNegativeNumber);
   train->add_option("--set", args->settings, "override a config value: KEY.PATH=VALUE (e.g. ppo.clip=0.1, rewards.0.episodes=10); repeatable");
@@ -54,6 +59,7 @@ void add_train_commands(CLI::App& app) {
     TrainOptions opts;
     opts.run_dir = args->out.empty() ? std::filesystem::path("runs") / args->config.stem() : args->out;
     opts.resume = args->resume;
+    opts.init_from = args->init_from;
     opts.stop_requested = [] { return g_stop.load(); };
     opts.on_iteration = [](const IterationMetrics& m) {
       spdlog::info("iter {:>5}  samples {:>9}  return {:>9}  len {:>6}  kl {:>8}  ent {:>7}  ev {:>6}  {:>7} samples/s",
@@ -67,6 +73,10 @@ void add_train_commands(CLI::App& app) {
     spdlog::info("{} {} in {} ({} envs, {} threads, {} samples per iteration, input {}, actions {})",
                  args->resume ? "resuming at iteration" : "training from iteration", trainer.iteration(), opts.run_dir.string(),
                  cfg.collect.envs, cfg.collect.threads, cfg.collect.samples, trainer.input_size(), trainer.action_size());
+    if (!args->init_from.empty())
+      spdlog::info("weights from {}: policy, value, normalisers and {} of {} reward sources' state{}", args->init_from.string(),
+                   trainer.reward_sources_initialised(), cfg.rewards.size(),
+                   cfg.policy.learn_std ? "" : fmt::format("; action noise held at the config's log_std {}", cfg.policy.log_std));
     trainer.run();
     spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stop.load() ? "stopped" : "done", trainer.iteration(),
                  trainer.samples(), (opts.run_dir / "checkpoint.pt").string());

@@ -1,6 +1,8 @@
 // Checkpoints: one LibTorch archive holding the networks, both optimizers (Adam moments or SGD
 // momentum), normalisers, the KL penalty, every random generator, counters and the config text.
 // Written to memory, then atomically to disk; read back with errors naming the file.
+#include <yaml-cpp/yaml.h>
+
 #include <sstream>
 
 #include "core/error.hpp"
@@ -130,6 +132,19 @@ void open_archive(const std::filesystem::path& path, InputArchive& a) {
   a.load_from(in);
 }
 
+// Opens a checkpoint for this trainer: a readable archive of this format, saved for the same
+// input and action sizes.
+void open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a) {
+  open_archive(path, a);
+  const auto format = get(a, "format").item<std::int64_t>();
+  if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
+  const auto in_size = get(a, "input_size").item<std::int64_t>();
+  const auto act_size = get(a, "action_size").item<std::int64_t>();
+  if (in_size != t.collector->input_size() || act_size != t.collector->action_size())
+    throw Error("saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
+                std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size()));
+}
+
 }  // namespace
 
 bool is_exported_checkpoint(const std::filesystem::path& path) {
@@ -150,14 +165,7 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
   try {
     InputArchive a;
-    open_archive(path, a);
-    const auto format = get(a, "format").item<std::int64_t>();
-    if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
-    const auto in_size = get(a, "input_size").item<std::int64_t>();
-    const auto act_size = get(a, "action_size").item<std::int64_t>();
-    if (in_size != t.collector->input_size() || act_size != t.collector->action_size())
-      throw Error("saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
-                  std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size()));
+    open_for(t, path, a);
     torch::Tensor acting_only;
     t.acting_only = a.try_read("acting_only", acting_only);
     t.iteration = static_cast<int>(get(a, "iteration").item<std::int64_t>());
@@ -203,6 +211,46 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
   // Fresh episodes from the restored generators, exactly as the saving run continued.
   t.collector->reset_all();
   std::fill(t.discounted_return.begin(), t.discounted_return.end(), 0.0);
+}
+
+int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
+  const std::string where = path.string();
+  if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
+  int sources_loaded = 0;
+  try {
+    InputArchive a;
+    open_for(t, path, a);
+    InputArchive policy, value, sources;
+    a.read("policy", policy);
+    a.read("value", value);
+    t.learner->policy()->load(policy);
+    t.learner->value()->load(value);
+    read_normalizer(a, "obs_norm", t.obs_norm);
+    read_normalizer(a, "return_norm", t.return_norm);
+    // A fixed covariance is the config's choice, not the checkpoint's.
+    if (!t.cfg.policy.learn_std) t.learner->policy()->set_log_std(t.cfg.policy.log_std);
+    // A source's state goes to the source of the same kind at the same place in the list.
+    const YAML::Node saved_rewards = YAML::Load(tensor_bytes(get(a, "config")))["rewards"];
+    a.read("reward_sources", sources);
+    for (std::size_t i = 0; i < t.rewards.size() && saved_rewards && i < saved_rewards.size(); ++i) {
+      const YAML::Node kind = saved_rewards[i]["source"];
+      if ((kind ? kind.as<std::string>() : std::string("env")) != t.cfg.rewards[i].source) continue;
+      InputArchive s;
+      if (!sources.try_read(std::to_string(i), s) || s.keys().empty()) continue;  // the env's has no state
+      t.rewards[i].second->load(s);
+      ++sources_loaded;
+    }
+    t.learner->check_parameters(0);
+  } catch (const YAML::Exception& e) {
+    throw Error(where + ": its saved config does not parse (" + std::string(e.what()) + ")");
+  } catch (const c10::Error& e) {
+    throw Error(where + ": cannot start from this checkpoint (" + std::string(e.what_without_backtrace()) + ")");
+  } catch (const TrainingDiverged& e) {
+    throw Error(where + ": " + e.what());
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
+  return sources_loaded;
 }
 
 }  // namespace mimic

@@ -222,6 +222,7 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (!dir.empty() && !resume && std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error(dir.string() + " already holds a run (checkpoint.pt): pass --resume to continue it, or choose another output directory");
   if (resume && dir.empty()) throw Error("resume needs a run directory");
+  if (resume && !opts.init_from.empty()) throw Error("a resumed run goes on from its own checkpoint; --init-from is for a new run");
   if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
   if (resume && std::filesystem::exists(dir / "config.yaml")) require_same_config(cfg, dir / "config.yaml");
@@ -230,7 +231,12 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
     throw Error((dir / "checkpoint.pt").string() +
                 ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
   const std::string text = cfg.text;
+  const std::filesystem::path init_from = opts.init_from;
   impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
+  if (!init_from.empty()) {
+    const std::filesystem::path checkpoint = std::filesystem::is_directory(init_from) ? init_from / "checkpoint.pt" : init_from;
+    impl_->sources_from_init = read_weights(*impl_, checkpoint);
+  }
   if (dir.empty()) return;
   if (resume) {
     load_checkpoint(dir / "checkpoint.pt");
@@ -274,6 +280,7 @@ long long Trainer::policy_parameters() const {
 }
 
 int Trainer::iteration() const { return impl_->iteration; }
+int Trainer::reward_sources_initialised() const { return impl_->sources_from_init; }
 long long Trainer::samples() const { return impl_->samples; }
 int Trainer::input_size() const { return impl_->collector->input_size(); }
 int Trainer::action_size() const { return impl_->collector->action_size(); }

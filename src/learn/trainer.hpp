@@ -22,6 +22,10 @@ namespace mimic {
 struct TrainOptions {
   std::filesystem::path run_dir;       // empty: no files at all (tests, benchmarks)
   bool resume = false;                 // continue from run_dir/checkpoint.pt
+  // A new run started from another's weights (its checkpoint.pt, or an exported model's): policy,
+  // value, normalisers and discriminators; fresh optimisers and counters (fine-tuning under a
+  // changed config). Not with resume.
+  std::filesystem::path init_from;
   std::function<bool()> stop_requested;  // polled between iterations; a stop writes a checkpoint
   std::function<void(const IterationMetrics&)> on_iteration;  // progress output
   // The program's own environments instead of the config's `env` section (a game, a test).
@@ -43,6 +47,7 @@ class Trainer {
   IterationMetrics iterate();
 
   int iteration() const;  // iterations completed
+  int reward_sources_initialised() const;  // reward sources loaded from TrainOptions::init_from
   long long samples() const;
   int input_size() const;
   int action_size() const;

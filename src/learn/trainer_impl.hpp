@@ -31,6 +31,7 @@ struct Trainer::Impl {
   int iteration = 0;
   long long samples = 0;
   double wall_seconds = 0;  // over all segments of a resumed run
+  int sources_from_init = 0;  // reward sources whose state came from TrainOptions::init_from
   bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
 
@@ -50,6 +51,11 @@ struct Trainer::Impl {
 // Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong.
 void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path);
 void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path);
+// A fresh run's start from another run's (or an exported model's) checkpoint: policy, value,
+// normalisers and the state of every reward source saved at the same place in the config's list
+// (discriminators); optimisers, counters and generators stay fresh. With a fixed covariance the
+// config's log_std replaces the saved one. Returns how many reward sources were loaded.
+int read_weights(Trainer::Impl& t, const std::filesystem::path& path);
 // Whether the file is an acting-only export (mimic export), read without building a trainer.
 bool is_exported_checkpoint(const std::filesystem::path& path);
 

@@ -486,3 +486,56 @@ TEST(AdversarialImitation, ACheckpointedRunResumesExactlyWithItsDiscriminator) {
   for (int i = 0; i < 2; ++i) resumed.push_back(without_time(t.iterate()));
   EXPECT_EQ(resumed, straight);
 }
+
+// mimic train --init-from: a new run under a changed config (here a fixed action noise and
+// another learning rate) starts from another run's policy, value, normalisers and discriminator,
+// with fresh optimisers and counters.
+TEST(AdversarialImitation, ANewRunStartsFromAnotherRunsWeightsUnderAChangedConfig) {
+  const auto dir = test::temp_dir("gail_init_from");
+  write_demonstrations(dir / "expert.csv", oscillator_expert(4));
+  const std::string text = gail_config(dir / "expert.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2");
+  TrainOptions o = oscillator_options();
+  o.run_dir = dir / "source";
+  Trainer source(parse_train_config(text, "osc.yaml"), o);
+  source.run();
+  const Eigen::VectorXd input = Eigen::Vector2d(0.3, -0.8);
+  auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*source.impl().rewards[0].second).discriminator();
+  const torch::Tensor scores = source_disc.reward(source_disc.expert());
+
+  std::string changed = text;
+  changed.replace(changed.find("log_std: -0.5}"), 14, "log_std: -2.0, learn_std: false}");
+  changed += "optimizer: {policy_lr: 1.0e-5}\n";
+  TrainOptions fine = oscillator_options();
+  fine.run_dir = dir / "fine";
+  fine.init_from = dir / "source";
+  Trainer t(parse_train_config(changed, "osc_fixed_noise.yaml"), fine);
+  EXPECT_EQ(t.iteration(), 0);
+  EXPECT_EQ(t.samples(), 0);
+  EXPECT_EQ(t.reward_sources_initialised(), 1);
+  EXPECT_EQ(t.act(input), source.act(input));  // the same mean action: policy and normaliser
+  EXPECT_TRUE(torch::allclose(t.impl().learner->policy()->log_std(), torch::full({1}, -2.0)));  // the config's fixed noise
+  EXPECT_TRUE(t.impl().learner->policy_optimizer().state().empty());
+  auto& disc = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second).discriminator();
+  EXPECT_TRUE(torch::equal(disc.reward(disc.expert()), scores));
+  t.iterate();  // and it trains on
+  EXPECT_EQ(t.iteration(), 1);
+
+  // A config whose rewards are the env's alone takes the networks, not the discriminator.
+  TrainOptions plain = oscillator_options();
+  plain.init_from = dir / "source" / "checkpoint.pt";
+  std::string env_only = text.substr(0, text.find("rewards:"));
+  EXPECT_EQ(Trainer(parse_train_config(env_only, "osc_env.yaml"), plain).reward_sources_initialised(), 0);
+  // Another input size, a missing checkpoint, and resume with it are errors naming the file.
+  plain.init_from = dir / "source";
+  TrainOptions with_context = plain;  // the oscillator with a 2-context one-hot: an input of 4
+  with_context.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  EXPECT_NE(error_of([&] { Trainer(parse_train_config(env_only, "osc_context.yaml"), with_context); })
+                .find("source/checkpoint.pt: saved for an input of 2 and 1 actions; the config's environment has 4 and 1"),
+            std::string::npos);
+  plain.init_from = dir / "nowhere";
+  EXPECT_NE(error_of([&] { Trainer(parse_train_config(env_only, "osc_env.yaml"), plain); }).find("nowhere: no such checkpoint"), std::string::npos);
+  plain.init_from = dir / "source";
+  plain.run_dir = dir / "source";
+  plain.resume = true;
+  EXPECT_NE(error_of([&] { Trainer(parse_train_config(text, "osc.yaml"), plain); }).find("--init-from is for a new run"), std::string::npos);
+}
