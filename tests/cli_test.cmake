@@ -233,6 +233,11 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   run_ok(render ${OUT}/context_run -o ${OUT}/context.mp4 --seconds 1 --contexts 0,1 --context-seconds 0.3)
   expect_in("${LAST_OUT}" "0.30 s: context 1")
   run_fails("context 2 is outside the run's 0 to 1" render ${OUT}/context_run -o ${OUT}/context2.mp4 --contexts 0,2)
+  # A tracking policy over contexts is filmed with its reference as a ghost, through the env it wraps.
+  file(WRITE ${OUT}/tracking_context.yaml "iterations: 1\nenv: {name: tracking, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: ${DATA}/deepmimic/motions/humanoid3d_walk.txt, max_seconds: 1, context: {count: 2, period: 15}}\ncollect: {envs: 2, samples: 64}\npolicy: {hidden: [16]}\nvalue: {hidden: [16]}\n")
+  run_ok(train ${OUT}/tracking_context.yaml -o ${OUT}/tracking_context_run)
+  run_ok(render ${OUT}/tracking_context_run -o ${OUT}/tracking_context.mp4 --seconds 0.5 --ghost --contexts 1,0 --context-seconds 0.2)
+  expect_in("${LAST_OUT}" "0.20 s: context 0")
   # The docs' figures: robustness curves and a table of evaluations.
   run_ok(plot ${OUT}/robust.json ${OUT}/robust.json --names a b -o ${OUT}/robust.png)
   if(NOT EXISTS ${OUT}/robust.png)

@@ -55,7 +55,8 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   const int context_steps = std::max(1, static_cast<int>(std::lround(opts.context_seconds / control_dt)));
 
   // The ghost: the reference pose at the env's clip time, in a second data of the same model.
-  const auto* character = dynamic_cast<const CharacterEnv*>(env.get());
+  // A behaviour-context env draws its character through the env it wraps.
+  const auto* character = dynamic_cast<const CharacterEnv*>(behaviours ? &behaviours->inner() : env.get());
   if (opts.ghost && (!character || !character->reference()))
     throw Error("--ghost needs an environment with a reference clip (e.g. tracking)");
   std::unique_ptr<mjData, void (*)(mjData*)> ghost(opts.ghost ? mj_makeData(env->physics_model()) : nullptr, mj_deleteData);
