@@ -242,7 +242,9 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
     load_checkpoint(dir / "checkpoint.pt");
   } else {
     std::filesystem::create_directories(dir);
-    write_file_atomic(dir / "config.yaml", text);
+    // The run's own record of where its weights came from (a comment: resume ignores it).
+    const std::string origin = init_from.empty() ? "" : "# started from the weights of " + init_from.string() + " (mimic train --init-from)\n";
+    write_file_atomic(dir / "config.yaml", origin + text);
   }
   impl_->log = std::make_unique<RunLog>(dir, impl_->cfg.tensorboard, resume ? impl_->iteration : -1);
 }
