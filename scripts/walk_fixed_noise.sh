@@ -5,7 +5,7 @@
 # 2·10⁷-sample walk on with the noise held at the 7.96 M level (`mimic train --init-from`, fixed σ),
 # then measure imitation and robustness as scripts/walk_robustness.sh does.
 # Usage: scripts/walk_fixed_noise.sh [SOURCE_RUN] [OUT_DIR]   (defaults: the walk's run directory,
-# runs/walk_fixed_noise). ITERATIONS (default 600: 2.46 M samples), LOG_STD (default −1.66),
+# runs/walk_fixed_noise). ITERATIONS (default 750: 3.07 M samples, the run in docs/tracking.md), LOG_STD (default −1.66),
 # THREADS (default 1), TRIALS (default 100) robustness trials a mass at 5, 10 and 20 kg.
 # Resumable: a run with a checkpoint is resumed, an evaluation whose JSON exists is kept. The source
 # needs its full checkpoint (the run's, with the discriminator's replay; an exported model also works).
@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source_run=${1:-runs/humanoid_walk_iccgan_cpu_feet_vel}
 out=${2:-runs/walk_fixed_noise}
-iterations=${ITERATIONS:-600}
+iterations=${ITERATIONS:-750}
 log_std=${LOG_STD:--1.66}
 threads=${THREADS:-1}
 trials=${TRIALS:-100}
