@@ -148,9 +148,15 @@ std::string context_switches(const EvalArgs& args, const Trainer& trainer) {
   const std::unique_ptr<Env> env = trainer.make_env();
   auto* contexts = dynamic_cast<ContextEnv*>(env.get());
   if (!contexts) throw Error(args.run.string() + ": --switch: this run's environment has no behaviour context");
+  std::vector<int> distinct = args.switches;
+  std::sort(distinct.begin(), distinct.end());
+  if (std::adjacent_find(distinct.begin(), distinct.end()) != distinct.end())
+    throw Error(args.run.string() + ": --switch lists a context twice; give each once, e.g. --switch 0,1");
   if (args.switches.size() < 2) throw Error(args.run.string() + ": --switch needs two or more contexts, e.g. --switch 0,1");
+  // Holds are timed at the character's control rate (other environments do not state theirs).
   const CharacterEnv* character = character_of(*env);
-  const double hz = character ? character->config().sim.control_hz : 30.0;
+  if (!character) throw Error(args.run.string() + ": --switch needs a character environment (its control rate times the holds)");
+  const double hz = character->config().sim.control_hz;
   const int hold = std::max(2, static_cast<int>(std::lround(args.switch_seconds * hz)));
   spdlog::info("  switches        context held {:.2f} s, then the other for as long; {} trials a pair from the env's own starts (mean actions); "
                "speed: horizontal, of the root, over each hold's second half",
