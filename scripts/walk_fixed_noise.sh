@@ -5,7 +5,8 @@
 # 2·10⁷-sample walk on with the noise held at the 7.96 M level (`mimic train --init-from`, fixed σ),
 # then measure imitation and robustness as scripts/walk_robustness.sh does.
 # Usage: scripts/walk_fixed_noise.sh [SOURCE_RUN] [OUT_DIR]   (defaults: the walk's run directory,
-# runs/walk_fixed_noise). ITERATIONS (default 750: 3.07 M samples, the run in docs/tracking.md), LOG_STD (default −1.66),
+# runs/walk_fixed_noise). ITERATIONS (default 750: 3.07 M samples, the run in docs/tracking.md), LOG_STD (default −1.66;
+# `learnt` leaves the noise to PPO as in the source run: the control with the same samples),
 # THREADS (default 1), TRIALS (default 100) robustness trials a mass at 5, 10 and 20 kg.
 # Resumable: a run with a checkpoint is resumed, an evaluation whose JSON exists is kept. The source
 # needs its full checkpoint (the run's, with the discriminator's replay; an exported model also works).
@@ -26,8 +27,10 @@ mkdir -p "$out"
 if [ -f "$run/checkpoint.pt" ]; then
   "$mimic" train --resume -o "$run" --iterations "$iterations" --threads "$threads"
 else
+  noise=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+  [ "$log_std" = learnt ] && noise=()
   "$mimic" train "$source_run/config.yaml" -o "$run" --init-from "$source_run" --iterations "$iterations" --threads "$threads" \
-    --set policy.learn_std=false --set "policy.log_std=$log_std"
+    "${noise[@]}"
 fi
 [ -f "$out/eval.json" ] || "$mimic" eval "$run" --clip "$clip" --episodes 10 --trials 20 --json "$out/eval.json"
 [ -f "$out/robustness.json" ] || "$mimic" eval "$run" --clip "$clip" --episodes 1 --trials 1 --robustness 5,10,20 \
@@ -40,5 +43,5 @@ r = json.load(open(f"{out}/robustness.json"))["robustness"]
 print(f"imitation error {e['error_mean']:.3f} ± {e['error_std']:.3f} m, progress {e['progress']:.2f}, down {e['down']} of {e['trials']}")
 print("| policy | " + " | ".join(f"{x['mass']:g} kg" for x in r) + " |")
 print("| --- |" + " --- |" * len(r))
-print("| fixed noise | " + " | ".join(f"{x['frames_mean']:.1f} ± {x['frames_std'] / x['trials'] ** 0.5:.1f}" for x in r) + " |")
+print(f"| {out} | " + " | ".join(f"{x['frames_mean']:.1f} ± {x['frames_std'] / x['trials'] ** 0.5:.1f}" for x in r) + " |")
 PY

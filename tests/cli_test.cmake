@@ -217,6 +217,12 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   # A policy over behaviour contexts (two clips, one context each) is measured per clip with its context held.
   file(WRITE ${OUT}/context.yaml "iterations: 1\nenv: {name: humanoid_forward, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: [${DATA}/deepmimic/motions/humanoid3d_walk.txt, ${DATA}/deepmimic/motions/humanoid3d_run.txt], max_seconds: 1, context: {count: 2, period: 15}}\ncollect: {envs: 2, samples: 128}\npolicy: {hidden: [16]}\nvalue: {hidden: [16]}\n")
   run_ok(train ${OUT}/context.yaml -o ${OUT}/context_run)
+  # A run without contexts starts one with them: its inputs widen by the one-hot.
+  file(WRITE ${OUT}/no_context.yaml "iterations: 1\nenv: {name: humanoid_forward, character: ${DATA}/deepmimic/characters/humanoid3d.txt, clip: [${DATA}/deepmimic/motions/humanoid3d_walk.txt, ${DATA}/deepmimic/motions/humanoid3d_run.txt], max_seconds: 1}\ncollect: {envs: 2, samples: 128}\npolicy: {hidden: [16]}\nvalue: {hidden: [16]}\n")
+  run_ok(train ${OUT}/no_context.yaml -o ${OUT}/no_context_run)
+  run_ok(train ${OUT}/context.yaml -o ${OUT}/context_from_plain --init-from ${OUT}/no_context_run)
+  expect_in("${LAST_OUT}" "no_context_run had no behaviour context: its inputs were widened by the 2-context one-hot")
+  run_fails("context_run/checkpoint.pt: saved for an input of" train ${OUT}/no_context.yaml -o ${OUT}/plain_from_context --init-from ${OUT}/context_run)
   run_ok(eval ${OUT}/context_run --episodes 1 --trials 2 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --context 1 --json ${OUT}/context.json)
   expect_in("${LAST_OUT}" "2 trials from evenly spaced phases of 'humanoid3d_run', one cycle of ")
   expect_in("${LAST_OUT}" "(mean actions, context 1 held)")

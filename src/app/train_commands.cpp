@@ -77,6 +77,10 @@ void add_train_commands(CLI::App& app) {
       spdlog::info("weights from {}: policy, value, normalisers and {} of {} reward sources' state{}", args->init_from.string(),
                    trainer.reward_sources_initialised(), cfg.rewards.size(),
                    cfg.policy.learn_std ? "" : fmt::format("; action noise held at the config's log_std {}", cfg.policy.log_std));
+    if (trainer.contexts_added_by_init() > 0)
+      spdlog::info("{} had no behaviour context: its inputs were widened by the {}-context one-hot, whose weights start at zero "
+                   "(every context acts as it did)",
+                   args->init_from.string(), trainer.contexts_added_by_init());
     trainer.run();
     spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stop.load() ? "stopped" : "done", trainer.iteration(),
                  trainer.samples(), (opts.run_dir / "checkpoint.pt").string());

@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "learn/input_widening.hpp"
 
 namespace mimic {
 
@@ -102,6 +103,20 @@ std::vector<std::pair<std::string, double>> AdversarialRewardSource::update(cons
 
 void AdversarialRewardSource::save(torch::serialize::OutputArchive& a) const { disc_.save(a); }
 void AdversarialRewardSource::load(torch::serialize::InputArchive& a) { disc_.load(a); }
+
+void AdversarialRewardSource::load_widened(torch::serialize::InputArchive& a, int added_contexts) {
+  if (features_.contexts == 0) {  // one expert file for every context: the discriminator's inputs did not change
+    disc_.load(a);
+    return;
+  }
+  if (features_.contexts != added_contexts)
+    throw Error(name_ + ": its features hold " + std::to_string(features_.contexts) + " context inputs, not the " +
+                std::to_string(added_contexts) + " the observation gained (give one demonstrations file per context: experts)");
+  // The one-hot follows each state's entries; a (s, a) transition's action comes after them.
+  const int states = features_.transition == "ss" ? 2 : 1;
+  const std::int64_t saved_width = disc_.input_size() - static_cast<std::int64_t>(states) * added_contexts;
+  disc_.load_widened(a, widened_columns(saved_width, static_cast<std::int64_t>(features_.columns.size()), states, added_contexts));
+}
 
 namespace {
 

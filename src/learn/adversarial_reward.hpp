@@ -51,6 +51,7 @@ class AdversarialRewardSource : public RewardSource {
   void drop_training_state() override { disc_.drop_training_state(); }
   void save(torch::serialize::OutputArchive& a) const override;
   void load(torch::serialize::InputArchive& a) override;
+  void load_widened(torch::serialize::InputArchive& a, int added_contexts) override;
   Discriminator& discriminator() { return disc_; }
   const TransitionFeatures& features() const { return features_; }
 

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "learn/archive_util.hpp"
+#include "learn/input_widening.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
@@ -134,15 +135,49 @@ void open_archive(const std::filesystem::path& path, InputArchive& a) {
 
 // Opens a checkpoint for this trainer: a readable archive of this format, saved for the same
 // input and action sizes.
-void open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a) {
+std::string size_mismatch(const Trainer::Impl& t, std::int64_t in_size, std::int64_t act_size) {
+  return "saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
+         std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size());
+}
+
+// Reads the format; returns the saved input size after checking the action size (and, unless
+// `other_input_ok`, the input size).
+std::int64_t open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a, bool other_input_ok = false) {
   open_archive(path, a);
   const auto format = get(a, "format").item<std::int64_t>();
   if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
   const auto in_size = get(a, "input_size").item<std::int64_t>();
   const auto act_size = get(a, "action_size").item<std::int64_t>();
-  if (in_size != t.collector->input_size() || act_size != t.collector->action_size())
-    throw Error("saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
-                std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size()));
+  if ((in_size != t.collector->input_size() && !other_input_ok) || act_size != t.collector->action_size())
+    throw Error(size_mismatch(t, in_size, act_size));
+  return in_size;
+}
+
+// Context inputs the observation gained since `saved_config` (a run without a behaviour
+// context, now with one): the size of the env's context slice when the input grew by exactly one
+// per stacked frame, else 0.
+int added_context_inputs(Trainer::Impl& t, const YAML::Node& saved_config, std::int64_t saved_input) {
+  const YAML::Node saved_context = saved_config["env"] ? saved_config["env"]["context"] : YAML::Node();
+  if (saved_context && saved_context["count"] && saved_context["count"].as<int>() > 0) return 0;
+  for (const ObservationSlice& s : t.collector->env(0).observation_layout()) {
+    if (s.name != "context") continue;
+    const std::int64_t frames = t.collector->input_size() / t.collector->frame_size();
+    return saved_input + frames * s.size == t.collector->input_size() ? s.size : 0;
+  }
+  return 0;
+}
+
+// The saved normaliser's statistics at their new places; a context input gets the moments of
+// contexts drawn evenly (mean 1/K, variance (1/K)(1 - 1/K)) over the saved count.
+void read_widened_normalizer(InputArchive& a, const std::string& key, RunningNormalizer& n, const std::vector<std::int64_t>& kept,
+                             int contexts) {
+  InputArchive sub;
+  a.read(key, sub);
+  const double count = get(sub, "count").item<double>();
+  const double p = 1.0 / contexts;
+  const Eigen::VectorXd mean = tensor_vec(widen_columns(get(sub, "mean"), kept, n.size(), p));
+  const Eigen::VectorXd m2 = tensor_vec(widen_columns(get(sub, "m2"), kept, n.size(), count * p * (1.0 - p)));
+  n.set_state(count, mean, m2);
 }
 
 }  // namespace
@@ -219,25 +254,44 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
   int sources_loaded = 0;
   try {
     InputArchive a;
-    open_for(t, path, a);
+    const std::int64_t saved_input = open_for(t, path, a, /*other_input_ok=*/true);
+    const YAML::Node saved_config = YAML::Load(tensor_bytes(get(a, "config")));
+    // A single-behaviour run may start a context run: its inputs widen, the context's weigh zero.
+    int added = 0;
+    if (saved_input != t.collector->input_size()) {
+      added = added_context_inputs(t, saved_config, saved_input);
+      if (added == 0) throw Error(size_mismatch(t, saved_input, t.collector->action_size()));
+      t.contexts_added_by_init = added;
+    }
     InputArchive policy, value, sources;
     a.read("policy", policy);
     a.read("value", value);
-    t.learner->policy()->load(policy);
-    t.learner->value()->load(value);
-    read_normalizer(a, "obs_norm", t.obs_norm);
+    if (added == 0) {
+      t.learner->policy()->load(policy);
+      t.learner->value()->load(value);
+      read_normalizer(a, "obs_norm", t.obs_norm);
+    } else {
+      const std::int64_t frames = t.collector->input_size() / t.collector->frame_size();
+      const auto kept = widened_columns(saved_input, saved_input / frames, frames, added);
+      load_widened(*t.learner->policy(), policy, kept, t.collector->input_size());
+      load_widened(*t.learner->value(), value, kept, t.collector->input_size());
+      read_widened_normalizer(a, "obs_norm", t.obs_norm, kept, added);
+    }
     read_normalizer(a, "return_norm", t.return_norm);
     // A fixed covariance is the config's choice, not the checkpoint's.
     if (!t.cfg.policy.learn_std) t.learner->policy()->set_log_std(t.cfg.policy.log_std);
     // A source's state goes to the source of the same kind at the same place in the list.
-    const YAML::Node saved_rewards = YAML::Load(tensor_bytes(get(a, "config")))["rewards"];
+    const YAML::Node saved_rewards = saved_config["rewards"];
     a.read("reward_sources", sources);
     for (std::size_t i = 0; i < t.rewards.size() && saved_rewards && i < saved_rewards.size(); ++i) {
       const YAML::Node kind = saved_rewards[i]["source"];
       if ((kind ? kind.as<std::string>() : std::string("env")) != t.cfg.rewards[i].source) continue;
       InputArchive s;
       if (!sources.try_read(std::to_string(i), s) || s.keys().empty()) continue;  // the env's has no state
-      t.rewards[i].second->load(s);
+      if (added == 0)
+        t.rewards[i].second->load(s);
+      else
+        t.rewards[i].second->load_widened(s, added);
       ++sources_loaded;
     }
     t.learner->check_parameters(0);

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "learn/archive_util.hpp"
+#include "learn/input_widening.hpp"
 
 namespace mimic {
 
@@ -193,6 +194,22 @@ void Discriminator::load(torch::serialize::InputArchive& a) {
   if (mean.numel() != mean_.numel()) throw Error("discriminator: saved input width differs from the configured features");
   mean_ = mean, std_ = sd;
   replay_ = archive::get(a, "replay");
+  archive::set_rng(rng_, archive::tensor_bytes(archive::get(a, "rng")), "discriminator");
+}
+
+void Discriminator::load_widened(torch::serialize::InputArchive& a, const std::vector<std::int64_t>& kept) {
+  torch::serialize::InputArchive net;
+  a.read("net", net);
+  mimic::load_widened(*net_, net, kept, input_size());
+  const torch::Tensor mean = archive::get(a, "mean"), sd = archive::get(a, "std");
+  if (mean.dim() != 1 || mean.numel() != static_cast<std::int64_t>(kept.size()) || sd.sizes() != mean.sizes())
+    throw Error("discriminator: saved statistics of " + std::to_string(mean.numel()) + " inputs, expected " + std::to_string(kept.size()));
+  // The saved statistics where they were; the new inputs keep this expert's (set at construction).
+  const torch::Tensor index = torch::tensor(kept, torch::kInt64);
+  mean_ = mean_.clone().index_copy_(0, index, mean.to(mean_.dtype()));
+  std_ = std_.clone().index_copy_(0, index, sd.to(std_.dtype()));
+  optimizer_->state().clear();
+  replay_ = torch::empty({0, expert_.size(1)});
   archive::set_rng(rng_, archive::tensor_bytes(archive::get(a, "rng")), "discriminator");
 }
 

@@ -84,6 +84,10 @@ class Discriminator {
   void drop_training_state();
   void save(torch::serialize::OutputArchive& a) const;
   void load(torch::serialize::InputArchive& a);
+  // load() of a discriminator saved with fewer inputs, each at its place in `kept`
+  // (input_widening.hpp): new inputs get zero weights and this expert's statistics; the Adam
+  // moments and the replay pool, of the narrower features, start afresh.
+  void load_widened(torch::serialize::InputArchive& a, const std::vector<std::int64_t>& kept);
 
  private:
   torch::Tensor standardise(const torch::Tensor& x) const { return (x - mean_) / std_; }

@@ -6,6 +6,10 @@
 
 namespace mimic {
 
+void RewardSource::load_widened(torch::serialize::InputArchive&, int added_contexts) {
+  throw Error("the '" + name() + "' reward source's saved state cannot take " + std::to_string(added_contexts) + " context inputs");
+}
+
 std::unique_ptr<RewardSource> make_reward_source(const RewardSourceConfig& cfg, const RewardSourceContext& context) {
   const YamlReader r(context.config_source);
   ConfigSection s(r, cfg.options, "rewards");

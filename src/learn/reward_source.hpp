@@ -31,6 +31,9 @@ class RewardSource {
   virtual void drop_training_state() {}
   virtual void save(torch::serialize::OutputArchive&) const {}
   virtual void load(torch::serialize::InputArchive&) {}
+  // load() of state saved before the observation gained a one-hot of `added_contexts` after each
+  // state (--init-from a single-behaviour run into a context run); an error where it cannot.
+  virtual void load_widened(torch::serialize::InputArchive& a, int added_contexts);
 };
 
 // The environment's own task reward.

@@ -48,6 +48,9 @@ class Trainer {
 
   int iteration() const;  // iterations completed
   int reward_sources_initialised() const;  // reward sources loaded from TrainOptions::init_from
+  // > 0: TrainOptions::init_from was saved without a behaviour context and its networks were
+  // widened by this many context inputs (weighing zero: every context starts acting as it did).
+  int contexts_added_by_init() const;
   long long samples() const;
   int input_size() const;
   int action_size() const;

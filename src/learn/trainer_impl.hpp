@@ -32,6 +32,7 @@ struct Trainer::Impl {
   long long samples = 0;
   double wall_seconds = 0;  // over all segments of a resumed run
   int sources_from_init = 0;  // reward sources whose state came from TrainOptions::init_from
+  int contexts_added_by_init = 0;  // > 0: init_from had no behaviour context; its inputs were widened
   bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
 

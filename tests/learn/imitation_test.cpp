@@ -526,16 +526,88 @@ TEST(AdversarialImitation, ANewRunStartsFromAnotherRunsWeightsUnderAChangedConfi
   std::string env_only = text.substr(0, text.find("rewards:"));
   EXPECT_EQ(Trainer(parse_train_config(env_only, "osc_env.yaml"), plain).reward_sources_initialised(), 0);
   // Another input size, a missing checkpoint, and resume with it are errors naming the file.
-  plain.init_from = dir / "source";
-  TrainOptions with_context = plain;  // the oscillator with a 2-context one-hot: an input of 4
-  with_context.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
-  EXPECT_NE(error_of([&] { Trainer(parse_train_config(env_only, "osc_context.yaml"), with_context); })
-                .find("source/checkpoint.pt: saved for an input of 2 and 1 actions; the config's environment has 4 and 1"),
-            std::string::npos);
   plain.init_from = dir / "nowhere";
   EXPECT_NE(error_of([&] { Trainer(parse_train_config(env_only, "osc_env.yaml"), plain); }).find("nowhere: no such checkpoint"), std::string::npos);
   plain.init_from = dir / "source";
   plain.run_dir = dir / "source";
   plain.resume = true;
   EXPECT_NE(error_of([&] { Trainer(parse_train_config(text, "osc.yaml"), plain); }).find("--init-from is for a new run"), std::string::npos);
+}
+
+TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextActingAsItDid) {
+  const auto dir = test::temp_dir("gail_init_context");
+  Demonstrations small = oscillator_expert(4);
+  small.layout = {{"position", 0, 1}, {"velocity", 1, 1}};  // as mimic record names them
+  Demonstrations large = small;
+  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", small);
+  write_demonstrations(dir / "large.csv", large);
+  const std::string text = gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2");
+  TrainOptions o = oscillator_options();
+  o.run_dir = dir / "source";
+  Trainer source(parse_train_config(text, "osc.yaml"), o);
+  source.run();
+  auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*source.impl().rewards[0].second).discriminator();
+
+  // The same set-up over two behaviours: a one-hot after the observation, one expert file each.
+  std::string two = text;
+  two.replace(two.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
+              "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]");
+  TrainOptions c = oscillator_options();
+  c.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  c.run_dir = dir / "context";
+  c.init_from = dir / "source";
+  Trainer t(parse_train_config(two, "osc_context.yaml"), c);
+  EXPECT_EQ(t.contexts_added_by_init(), 2);
+  EXPECT_EQ(t.reward_sources_initialised(), 1);
+  // Every context acts as the source did (its inputs weigh zero) ...
+  const Eigen::Vector2d x(0.3, -0.8);
+  for (const Eigen::Vector2d& context : {Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)}) {
+    Eigen::Vector4d input;
+    input << x, context;
+    EXPECT_NEAR(t.act(input)[0], source.act(x)[0], 1e-6);
+  }
+  // ... under the source's statistics, the one-hot's those of contexts drawn evenly.
+  const RunningNormalizer& norm = t.impl().obs_norm;
+  EXPECT_DOUBLE_EQ(norm.count(), source.impl().obs_norm.count());
+  EXPECT_TRUE(norm.mean().head(2).isApprox(source.impl().obs_norm.mean()));
+  EXPECT_NEAR(norm.mean()[2], 0.5, 1e-12);
+  EXPECT_NEAR(norm.variance()[3], 0.25, 1e-12);
+  // The discriminator scores the source's expert samples as before, in either context.
+  auto& disc = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second).discriminator();
+  ASSERT_EQ(disc.input_size(), source_disc.input_size() + 2);
+  const torch::Tensor expert = source_disc.expert();
+  const torch::Tensor scores = source_disc.reward(expert);
+  for (const torch::Tensor& one_hot : {torch::tensor({1.0f, 0.0f}), torch::tensor({0.0f, 1.0f})}) {
+    const torch::Tensor with_context = torch::cat({expert, one_hot.expand({expert.size(0), 2})}, 1);
+    EXPECT_TRUE(torch::allclose(disc.reward(with_context), scores, 1e-5, 1e-5));
+  }
+  EXPECT_EQ(disc.replay_rows(), 0);  // the narrower replay pool is not kept
+  t.run();  // and it trains on, saving a context checkpoint
+  EXPECT_EQ(t.iteration(), 2);
+
+  // One expert file for every context (features named, so the context is not among them): the
+  // policy widens, the discriminator loads as it was.
+  TrainOptions shared = c;
+  shared.run_dir.clear();
+  const std::string one_expert =
+      gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2, features: [position, velocity]");
+  Trainer one(parse_train_config(one_expert, "osc_context_one_expert.yaml"), shared);
+  EXPECT_EQ(one.reward_sources_initialised(), 1);
+  auto& one_disc = dynamic_cast<AdversarialRewardSource&>(*one.impl().rewards[0].second).discriminator();
+  EXPECT_TRUE(torch::allclose(one_disc.reward(expert), scores, 1e-6, 1e-6));
+  // A context run cannot start one without contexts; nor can a source of another size.
+  TrainOptions back = oscillator_options();
+  back.init_from = dir / "context";
+  const std::string env_only = text.substr(0, text.find("rewards:"));
+  EXPECT_NE(error_of([&] { Trainer(parse_train_config(env_only, "osc.yaml"), back); })
+                .find("context/checkpoint.pt: saved for an input of 4 and 1 actions; the config's environment has 2 and 1"),
+            std::string::npos);
+  TrainOptions three = c;  // three contexts: the input grew by 3, not the source's
+  three.run_dir.clear();
+  three.init_from = dir / "context";
+  three.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 3, 0); };
+  EXPECT_NE(error_of([&] { Trainer(parse_train_config(env_only, "osc3.yaml"), three); })
+                .find("saved for an input of 4 and 1 actions; the config's environment has 5 and 1"),
+            std::string::npos);
 }

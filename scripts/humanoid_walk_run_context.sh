@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# One ICCGAN policy, two gaits (seed 000's behaviour context over DeepMimic's walk and run,
+# configs/humanoid_walk_run_context_iccgan.yaml): train, then measure each context against its
+# clip (`mimic eval --context`), the switches between them (`--switch 0,1`) and film a switch.
+# Usage: scripts/humanoid_walk_run_context.sh [OUT_DIR]   (default runs/walk_run_context)
+#   INIT      a run or model without a context to start from (default models/humanoid_walk_iccgan,
+#             the 2·10⁷-sample walk; its inputs are widened by the one-hot); `none`: from scratch
+#   LOG_STD   `learnt` (default: the source's noise, then PPO's) or a fixed log σ (e.g. −1.66)
+#   ITERATIONS (default: the config's 5,000 of 4,096 samples), THREADS (default 1), TRIALS (20)
+# Resumable: a run with a checkpoint is resumed (stop it with Ctrl-C at any time); evaluations are
+# redone on each call, since the run may have moved on. Needs ../shared/data.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-runs/walk_run_context}
+init=${INIT:-models/humanoid_walk_iccgan}
+log_std=${LOG_STD:-learnt}
+threads=${THREADS:-1}
+trials=${TRIALS:-20}
+mimic=${MIMIC:-build/src/mimic}
+config=configs/humanoid_walk_run_context_iccgan.yaml
+motions=../shared/data/deepmimic/motions
+[ -d "$motions" ] || { echo "needs $motions (../shared/data beside the repository)" >&2; exit 1; }
+mkdir -p "$out" runs
+# The config reads one demonstrations file per context from runs/.
+for clip in walk run; do
+  demos=runs/humanoid_${clip}_links_demos.csv
+  [ -f "$demos" ] || "$mimic" record-clip configs/humanoid_walk_iccgan_links.yaml --clip "$motions/humanoid3d_$clip.txt" --passes 8 -o "$demos"
+done
+run="$out/run"
+iterations=()
+[ -n "${ITERATIONS:-}" ] && iterations=(--iterations "$ITERATIONS")
+if [ -f "$run/checkpoint.pt" ]; then
+  "$mimic" train --resume -o "$run" --threads "$threads" "${iterations[@]}" >> "$out/train.log" 2>&1
+else
+  args=("$config" -o "$run" --threads "$threads" "${iterations[@]}")
+  [ "$init" != none ] && args+=(--init-from "$init")
+  [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+  "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
+fi
+"$mimic" eval "$run" --clip "$motions/humanoid3d_walk.txt" --context 0 --episodes 10 --trials "$trials" --json "$out/walk.json"
+"$mimic" eval "$run" --clip "$motions/humanoid3d_run.txt" --context 1 --episodes 10 --trials "$trials" --json "$out/run.json"
+"$mimic" eval "$run" --episodes 1 --trials "$trials" --switch 0,1 --json "$out/switch.json"
+"$mimic" render "$run" -o "$out/switch.mp4" --contexts 0,1 --context-seconds 5
+python3 - "$out" <<'PY'
+import csv, json, sys
+out = sys.argv[1]
+m = list(csv.DictReader(open(f"{out}/run/metrics.csv")))[-1]
+print(f"{float(m['samples']) / 1e6:.2f} M samples in this run, {float(m['wall_s']):.0f} s")
+print("| context held | against | imitation error | falls | progress |")
+print("| --- | --- | --- | --- | --- |")
+for name, speed in (("walk", 0.98), ("run", 3.56)):
+    i = json.load(open(f"{out}/{name}.json"))["imitation"]
+    progress = "—" if i.get("progress") is None else f"{i['progress']:.2f}"
+    print(f"| {name} | {name} clip, {speed} m/s | {i['error_mean']:.3f} ± {i['error_std']:.3f} m | {i['down']} of {i['trials']} | {progress} |")
+print("| switch | fell before / after | speed before → after (m/s) |")
+print("| --- | --- | --- |")
+for s in json.load(open(f"{out}/switch.json"))["switches"]:
+    print(f"| {s['from']} → {s['to']} | {s['fell_before']} / {s['fell_after']} | "
+          f"{s['speed_before_mean']:.2f} ± {s['speed_before_std']:.2f} → {s['speed_after_mean']:.2f} ± {s['speed_after_std']:.2f} |")
+PY

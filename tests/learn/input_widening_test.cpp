@@ -1,0 +1,84 @@
+#include "learn/input_widening.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace mimic {
+namespace {
+
+torch::serialize::InputArchive saved_archive(torch::nn::Module& m) {
+  torch::serialize::OutputArchive out;
+  m.save(out);
+  std::ostringstream bytes;
+  out.save_to(bytes);
+  std::istringstream in(bytes.str());
+  torch::serialize::InputArchive a;
+  a.load_from(in);
+  return a;
+}
+
+}  // namespace
+
+TEST(InputWidening, ColumnsMoveByTheInputsAddedAfterEachBlock) {
+  // Two frames of 3 with 2 context inputs after each: 0 1 2 | 5 6 7.
+  EXPECT_EQ(widened_columns(6, 3, 2, 2), (std::vector<std::int64_t>{0, 1, 2, 5, 6, 7}));
+  // One state of 2, then a 2-value action that moves by the one block's context: 0 1 | 3 4.
+  EXPECT_EQ(widened_columns(4, 2, 1, 1), (std::vector<std::int64_t>{0, 1, 3, 4}));
+  EXPECT_EQ(widened_columns(3, 3, 1, 0), (std::vector<std::int64_t>{0, 1, 2}));
+  EXPECT_THROW(widened_columns(5, 3, 2, 1), Error);  // two blocks of 3 do not fit 5
+}
+
+TEST(InputWidening, SavedColumnsGoToTheirPlacesAndTheRestIsFilled) {
+  const torch::Tensor w = torch::tensor({1.0f, 2.0f, 3.0f, 4.0f}).view({2, 2});
+  const torch::Tensor wide = widen_columns(w, {0, 2}, 3, 0.0);
+  EXPECT_TRUE(torch::equal(wide, torch::tensor({1.0f, 0.0f, 2.0f, 3.0f, 0.0f, 4.0f}).view({2, 3})));
+  const torch::Tensor v = widen_columns(torch::tensor({5.0, 6.0}, torch::kFloat64), {1, 2}, 3, 0.5);
+  EXPECT_TRUE(torch::equal(v, torch::tensor({0.5, 5.0, 6.0}, torch::kFloat64)));
+  EXPECT_THROW(widen_columns(w, {0, 1, 2}, 4, 0.0), Error);  // 2 saved columns, 3 places
+}
+
+TEST(InputWidening, AWidenedNetworkComputesWhatTheSavedOneDidWhateverTheNewInputsHold) {
+  torch::manual_seed(3);
+  torch::nn::Sequential narrow(torch::nn::Linear(3, 4), torch::nn::Tanh(), torch::nn::Linear(4, 2));
+  torch::nn::Sequential wide(torch::nn::Linear(5, 4), torch::nn::Tanh(), torch::nn::Linear(4, 2));
+  auto archive = saved_archive(*narrow);
+  const auto kept = widened_columns(3, 3, 1, 2);  // a 2-input one-hot after the state
+  load_widened(*wide, archive, kept, 5);
+  const torch::Tensor x = torch::randn({6, 3});
+  const torch::Tensor expected = narrow->forward(x).detach();
+  for (const torch::Tensor& context : {torch::tensor({1.0f, 0.0f}), torch::tensor({0.0f, 1.0f}), torch::tensor({7.0f, -3.0f})}) {
+    const torch::Tensor with_context = torch::cat({x, context.expand({6, 2})}, 1);
+    EXPECT_TRUE(torch::allclose(wide->forward(with_context), expected, 1e-6, 1e-6));
+  }
+  // The new inputs' weights are zero and trainable; the rest are the saved ones.
+  const torch::Tensor first = wide[0]->as<torch::nn::Linear>()->weight;
+  EXPECT_TRUE(torch::equal(first.slice(1, 3, 5), torch::zeros({4, 2})));
+  EXPECT_TRUE(torch::equal(first.slice(1, 0, 3), narrow[0]->as<torch::nn::Linear>()->weight));
+  EXPECT_TRUE(first.requires_grad());
+}
+
+TEST(InputWidening, OtherShapesAndGrusAreRefusedByName) {
+  torch::nn::Sequential saved(torch::nn::Linear(3, 4));
+  torch::nn::Sequential other(torch::nn::Linear(5, 6));  // another hidden width: not a widening
+  auto a = saved_archive(*saved);
+  try {
+    load_widened(*other, a, widened_columns(3, 3, 1, 2), 5);
+    FAIL() << "loaded a 4-row weight into 6 rows";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("parameter 'weight' saved as [4, 3], the config's network has [6, 5]"), std::string::npos) << e.what();
+  }
+  torch::nn::GRU gru(torch::nn::GRUOptions(3, 4));
+  auto g = saved_archive(*gru);
+  torch::nn::GRU wider(torch::nn::GRUOptions(5, 4));
+  try {
+    load_widened(*wider, g, widened_columns(3, 3, 1, 2), 5);
+    FAIL() << "widened a GRU";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("GRU"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace mimic
