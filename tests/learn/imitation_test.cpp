@@ -567,6 +567,10 @@ TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextA
     input << x, context;
     EXPECT_NEAR(t.act(input)[0], source.act(x)[0], 1e-6);
   }
+  // (Normalised, the one-hot is ±1 and would cancel equal weights: look at them.)
+  const torch::Tensor first = t.impl().learner->policy()->named_parameters()["net.layers.0.weight"];
+  EXPECT_TRUE(torch::equal(first.slice(1, 2, 4), torch::zeros({first.size(0), 2})));
+  EXPECT_TRUE(torch::equal(first.slice(1, 0, 2), source.impl().learner->policy()->named_parameters()["net.layers.0.weight"]));
   // ... under the source's statistics, the one-hot's those of contexts drawn evenly.
   const RunningNormalizer& norm = t.impl().obs_norm;
   EXPECT_DOUBLE_EQ(norm.count(), source.impl().obs_norm.count());
@@ -582,6 +586,8 @@ TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextA
     const torch::Tensor with_context = torch::cat({expert, one_hot.expand({expert.size(0), 2})}, 1);
     EXPECT_TRUE(torch::allclose(disc.reward(with_context), scores, 1e-5, 1e-5));
   }
+  const torch::Tensor disc_first = disc.net()->named_parameters()["layers.0.weight"];
+  EXPECT_TRUE(torch::equal(disc_first.slice(1, disc.input_size() - 2), torch::zeros({disc_first.size(0), 2})));
   EXPECT_EQ(disc.replay_rows(), 0);  // the narrower replay pool is not kept
   t.run();  // and it trains on, saving a context checkpoint
   EXPECT_EQ(t.iteration(), 2);
