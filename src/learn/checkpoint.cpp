@@ -133,15 +133,13 @@ void open_archive(const std::filesystem::path& path, InputArchive& a) {
   a.load_from(in);
 }
 
-// Opens a checkpoint for this trainer: a readable archive of this format, saved for the same
-// input and action sizes.
 std::string size_mismatch(const Trainer::Impl& t, std::int64_t in_size, std::int64_t act_size) {
   return "saved for an input of " + std::to_string(in_size) + " and " + std::to_string(act_size) + " actions; the config's environment has " +
          std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size());
 }
 
-// Reads the format; returns the saved input size after checking the action size (and, unless
-// `other_input_ok`, the input size).
+// Opens a checkpoint for this trainer: a readable archive of this format, saved for the same
+// action size and (unless `other_input_ok`) input size; returns the saved input size.
 std::int64_t open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a, bool other_input_ok = false) {
   open_archive(path, a);
   const auto format = get(a, "format").item<std::int64_t>();
