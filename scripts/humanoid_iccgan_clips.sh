@@ -7,6 +7,9 @@
 # Usage: scripts/humanoid_iccgan_clips.sh [OUT_DIR] [CLIP...]   (clips: walk run kick punch)
 # THREADS (default 2) sets collect.threads; one clip trains at a time. About 3.3 h a clip on two
 # cores. Needs ../shared/data.
+#   INIT     a run or model each new clip starts from (`mimic train --init-from`; default none:
+#            from scratch), e.g. models/humanoid_walk_iccgan to start the run from the walk
+#   LOG_STD  `learnt` (default) or a log σ to hold the action noise at (e.g. -1.66)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-runs/iccgan_clips}
@@ -15,6 +18,8 @@ clips=("$@")
 [ ${#clips[@]} -gt 0 ] || clips=(walk run kick punch)
 mimic=${MIMIC:-build/src/mimic}
 threads=${THREADS:-2}
+init=${INIT:-none}
+log_std=${LOG_STD:-learnt}
 motions=../shared/data/deepmimic/motions
 [ -d "$motions" ] || { echo "needs $motions (../shared/data beside the repository)" >&2; exit 1; }
 mkdir -p "$out" runs
@@ -34,7 +39,10 @@ for clip in "${clips[@]}"; do
       "$mimic" train --resume -o "$run" --threads "$threads" >> "$run.log" 2>&1
     fi
   else
-    "$mimic" train "$config" -o "$run" --threads "$threads" > "$run.log" 2>&1
+    args=("$config" -o "$run" --threads "$threads")
+    [ "$init" != none ] && args+=(--init-from "$init")
+    [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+    "$mimic" train "${args[@]}" > "$run.log" 2>&1
   fi
   "$mimic" eval "$run" --clip "$motions/humanoid3d_$clip.txt" --episodes 20 --trials 20 --latency --json "$run.json"
   "$mimic" render "$run" -o "$run.mp4" --seconds 6
