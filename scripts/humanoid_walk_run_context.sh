@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One ICCGAN policy, two gaits (seed 000's behaviour context over DeepMimic's walk and run,
 # configs/humanoid_walk_run_context_iccgan.yaml): train, then measure each context against its
-# clip (`mimic eval --context`), the switches between them (`--switch 0,1`) and film a switch.
+# clip and the other's (`mimic eval --context`), the switches between them (`--switch 0,1`) and
+# film a switch.
 # Usage: scripts/humanoid_walk_run_context.sh [OUT_DIR]   (default runs/walk_run_context)
 #   INIT      a run or model without a context to start from (default models/humanoid_walk_iccgan,
 #             the 2·10⁷-sample walk; its inputs are widened by the one-hot); `none`: from scratch
@@ -37,8 +38,12 @@ else
   [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
   "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
 fi
-"$mimic" eval "$run" --clip "$motions/humanoid3d_walk.txt" --context 0 --episodes 10 --trials "$trials" --json "$out/walk.json"
-"$mimic" eval "$run" --clip "$motions/humanoid3d_run.txt" --context 1 --episodes 10 --trials "$trials" --json "$out/run.json"
+# Each clip under each context: under the other one, a policy that heeds the context must do worse.
+for context in 0 1; do
+  for clip in walk run; do
+    "$mimic" eval "$run" --clip "$motions/humanoid3d_$clip.txt" --context $context --episodes 10 --trials "$trials" --json "$out/${clip}_context$context.json"
+  done
+done
 "$mimic" eval "$run" --episodes 1 --trials "$trials" --switch 0,1 --json "$out/switch.json"
 "$mimic" render "$run" -o "$out/switch.mp4" --contexts 0,1 --context-seconds 5
 python3 - "$out" <<'PY'
@@ -46,12 +51,14 @@ import csv, json, sys
 out = sys.argv[1]
 m = list(csv.DictReader(open(f"{out}/run/metrics.csv")))[-1]
 print(f"{float(m['samples']) / 1e6:.2f} M samples in this run, {float(m['wall_s']):.0f} s")
-print("| context held | against | imitation error | falls | progress |")
+print("| context held | against | imitation error | down | progress |")
 print("| --- | --- | --- | --- | --- |")
-for name, speed in (("walk", 0.98), ("run", 3.56)):
-    i = json.load(open(f"{out}/{name}.json"))["imitation"]
-    progress = "—" if i.get("progress") is None else f"{i['progress']:.2f}"
-    print(f"| {name} | {name} clip, {speed} m/s | {i['error_mean']:.3f} ± {i['error_std']:.3f} m | {i['down']} of {i['trials']} | {progress} |")
+for context, behaviour in enumerate(("walk", "run")):
+    for name, speed in (("walk", 0.98), ("run", 3.56)):
+        i = json.load(open(f"{out}/{name}_context{context}.json"))["imitation"]
+        progress = "—" if i.get("progress") is None else f"{i['progress']:.2f}"
+        print(f"| {context} ({behaviour}) | {name} clip, {speed} m/s | {i['error_mean']:.3f} ± {i['error_std']:.3f} m | "
+              f"{i['down']} of {i['trials']} | {progress} |")
 print("| switch | fell before / after | speed before → after (m/s) |")
 print("| --- | --- | --- |")
 for s in json.load(open(f"{out}/switch.json"))["switches"]:
