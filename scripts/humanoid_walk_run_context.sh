@@ -38,7 +38,7 @@ else
   [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
   "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
 fi
-# Each clip under each context: under the other one, a policy that heeds the context must do worse.
+# Each clip under each context: a policy that heeds its context does worse under the other one.
 for context in 0 1; do
   for clip in walk run; do
     "$mimic" eval "$run" --clip "$motions/humanoid3d_$clip.txt" --context $context --episodes 10 --trials "$trials" --json "$out/${clip}_context$context.json"
