@@ -7,6 +7,8 @@
 #   INIT      a run or model without a context to start from (default models/humanoid_walk_iccgan,
 #             the 2·10⁷-sample walk; its inputs are widened by the one-hot); `none`: from scratch
 #   LOG_STD   `learnt` (default: the source's noise, then PPO's) or a fixed log σ (e.g. −1.66)
+#   STARTS    `any` (default: the config's, episodes start from either clip) or `by_context` (each
+#             episode starts from its context's clip: env.context.starts)
 #   ITERATIONS (default: the config's 5,000 of 4,096 samples), THREADS (default 1), TRIALS (20)
 # Resumable: a run with a checkpoint is resumed (stop it with Ctrl-C at any time); evaluations are
 # redone on each call, since the run may have moved on. Needs ../shared/data.
@@ -15,6 +17,7 @@ cd "$(dirname "$0")/.."
 out=${1:-runs/walk_run_context}
 init=${INIT:-models/humanoid_walk_iccgan}
 log_std=${LOG_STD:-learnt}
+starts=${STARTS:-any}
 threads=${THREADS:-1}
 trials=${TRIALS:-20}
 mimic=${MIMIC:-build/src/mimic}
@@ -36,6 +39,7 @@ else
   args=("$config" -o "$run" --threads "$threads" "${iterations[@]}")
   [ "$init" != none ] && args+=(--init-from "$init")
   [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+  [ "$starts" != any ] && args+=(--set "env.context.starts=$starts")
   "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
 fi
 # Each clip under each context: a policy that heeds its context does worse under the other one.

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/yaml_reader.hpp"
+#include "env/context_env.hpp"
 #include "env/env_factory.hpp"
 #include "motion/deepmimic.hpp"
 #include "humanoid_data.hpp"
@@ -271,30 +272,45 @@ TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
 
 // Seed 004's integrated learning: starts from every clip of a collection, each in proportion to
 // its duration (a pose drawn uniformly from all their frames).
+namespace {
+
+// A clip holding the rest pose with the right elbow bent `angle` rad for `seconds`: starts from
+// different clips are told apart by the elbow.
+std::shared_ptr<const Clip> held_elbow(const CharacterModel& ch, double angle, double seconds) {
+  const auto elbow = static_cast<std::size_t>(ch.skeleton.find("right_elbow"));
+  Clip c;
+  c.name = "held_" + std::to_string(angle);
+  c.skeleton = ch.skeleton;
+  Pose p = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.01));
+  p.rot[elbow] = Quat(Eigen::AngleAxisd(angle, ch.skeleton.joints[elbow].axis));
+  c.frames.assign(static_cast<std::size_t>(seconds * c.fps) + 1, p);
+  return std::make_shared<const Clip>(std::move(c));
+}
+
+double elbow_angle(const CharacterEnv& env) {
+  const Skeleton& sk = env.world().character().skeleton;
+  const auto elbow = static_cast<std::size_t>(sk.find("right_elbow"));
+  return revolute_angle(sk.joints[elbow], env.world().pose().rot[elbow]);
+}
+
+}  // namespace
+
 TEST(HumanoidForward, StartsFromSeveralClipsInProportionToTheirDurations) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  const int elbow = ch.skeleton.find("right_elbow");
-  ASSERT_GE(elbow, 0);
+  ASSERT_GE(ch.skeleton.find("right_elbow"), 0);
   // Two held poses told apart by the right elbow: 1 s at 0.3 rad, 3 s at 1.2 rad.
-  auto held = [&](double angle, double seconds) {
-    Clip c;
-    c.name = "held_" + std::to_string(angle);
-    c.skeleton = ch.skeleton;
-    Pose p = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.01));
-    p.rot[static_cast<std::size_t>(elbow)] = Quat(Eigen::AngleAxisd(angle, ch.skeleton.joints[static_cast<std::size_t>(elbow)].axis));
-    c.frames.assign(static_cast<std::size_t>(seconds * c.fps) + 1, p);
-    return std::make_shared<const Clip>(std::move(c));
-  };
+  auto held = [&](double angle, double seconds) { return held_elbow(ch, angle, seconds); };
   HumanoidForwardConfig cfg;
   cfg.init_noise = 0.0;
   auto env = make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), held(1.2, 3.0)}, cfg);
+  EXPECT_EQ(env->start_groups(), 2);
   std::mt19937_64 rng(5);
   int from_long = 0, from_short = 0;
   const int starts = 400;
   for (int i = 0; i < starts; ++i) {
     env->reset(rng);
-    const double angle = revolute_angle(ch.skeleton.joints[static_cast<std::size_t>(elbow)], env->world().pose().rot[static_cast<std::size_t>(elbow)]);
+    const double angle = elbow_angle(*env);
     if (std::abs(angle - 1.2) < 1e-6) ++from_long;
     if (std::abs(angle - 0.3) < 1e-6) ++from_short;
   }
@@ -307,6 +323,89 @@ TEST(HumanoidForward, StartsFromSeveralClipsInProportionToTheirDurations) {
   for (Pose& p : other.frames) p.rot.pop_back();
   EXPECT_THROW(make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), std::make_shared<const Clip>(other)}, cfg),
                Error);
+}
+
+// A chosen start group (a clip of the list) restricts the starts to that clip until chosen again.
+TEST(HumanoidForward, AChosenStartGroupStartsFromThatClipAlone) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  HumanoidForwardConfig cfg;
+  cfg.init_noise = 0.0;
+  auto env = make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held_elbow(ch, 0.3, 1.0), held_elbow(ch, 1.2, 3.0)}, cfg);
+  std::mt19937_64 rng(3);
+  env->choose_start_group(0);  // the short clip, a quarter of the starts when drawn from both
+  for (int i = 0; i < 40; ++i) {
+    env->reset(rng);
+    EXPECT_NEAR(elbow_angle(*env), 0.3, 1e-6) << "start " << i;
+  }
+  env->choose_start_group(1);
+  for (int i = 0; i < 10; ++i) {
+    env->reset(rng);
+    EXPECT_NEAR(elbow_angle(*env), 1.2, 1e-6) << "start " << i;
+  }
+  EXPECT_EQ(env->start_group(), 1);
+  EXPECT_THROW(env->choose_start_group(2), Error);
+  EXPECT_THROW(env->choose_start_group(-2), Error);
+  env->choose_start_group(-1);  // every clip again
+  EXPECT_EQ(env->start_group(), -1);
+}
+
+// A behaviour context with starts: by_context starts each episode from its context's clip, also
+// when the context is held; the config refuses it where the clips do not match the contexts.
+TEST(HumanoidForward, ContextStartsComeFromTheContextsClip) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  HumanoidForwardConfig cfg;
+  cfg.init_noise = 0.0;
+  auto clips = [&] { return std::vector<std::shared_ptr<const Clip>>{held_elbow(ch, 0.3, 1.0), held_elbow(ch, 1.2, 3.0)}; };
+  ContextEnv env(make_humanoid_forward_env(ch, clips(), cfg), 2, 0, true);
+  const auto& character = dynamic_cast<const CharacterEnv&>(env.inner());
+  std::mt19937_64 rng(11);
+  int per_context[2] = {0, 0};
+  for (int i = 0; i < 100; ++i) {
+    env.reset(rng);
+    const double expected = env.context() == 0 ? 0.3 : 1.2;
+    EXPECT_NEAR(elbow_angle(character), expected, 1e-6) << "start " << i << ", context " << env.context();
+    ++per_context[env.context()];
+  }
+  EXPECT_GT(per_context[0], 30);  // contexts drawn evenly, not by clip duration (binomial sd 5)
+  EXPECT_GT(per_context[1], 30);
+  env.hold_context(0);
+  for (int i = 0; i < 10; ++i) {
+    env.reset(rng);
+    EXPECT_NEAR(elbow_angle(character), 0.3, 1e-6) << "held start " << i;
+  }
+  // Without the option the starts ignore the context (in proportion to the clips' durations).
+  ContextEnv any(make_humanoid_forward_env(ch, clips(), cfg), 2, 0);
+  int mismatched = 0;
+  for (int i = 0; i < 100; ++i) {
+    any.reset(rng);
+    const double expected = any.context() == 0 ? 0.3 : 1.2;
+    if (std::abs(elbow_angle(dynamic_cast<const CharacterEnv&>(any.inner())) - expected) > 1e-6) ++mismatched;
+  }
+  EXPECT_GT(mismatched, 20);
+  // One clip per context, on a character env.
+  EXPECT_THROW(ContextEnv(make_humanoid_forward_env(ch, clips(), cfg), 3, 0, true), Error);
+  EXPECT_THROW(ContextEnv(std::make_unique<CharacterEnv>(ch, CharacterEnvConfig{}), 2, 0, true), Error);
+
+  const YamlReader r("ctx.yaml");
+  auto error = [&](const std::string& env_yaml) {
+    try {
+      (void)make_env_factory(r.parse(env_yaml, ""), r);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt], "
+                  "context: {count: 2, period: 150, starts: by_context}}"),
+            "no error");
+  EXPECT_NE(error("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, starts: by_context}}")
+                .find("one start clip per context: 2 contexts, 1 clips"),
+            std::string::npos);
+  EXPECT_NE(error("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, starts: sometimes}}")
+                .find("starts"),
+            std::string::npos);
 }
 
 TEST(HumanoidForward, TheConfigTakesOneClipOrAList) {

@@ -116,6 +116,12 @@ Eigen::VectorXd CharacterEnv::action_for(const Pose& targets) const {
   return a;
 }
 
+void CharacterEnv::choose_start_group(int g) {
+  if (g < -1 || g >= start_groups_)
+    throw Error("start group " + std::to_string(g) + " is outside [-1, " + std::to_string(start_groups_) + ")");
+  start_group_ = g;
+}
+
 Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
   InitState s;
   if (init_sampler_) {

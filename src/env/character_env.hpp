@@ -72,6 +72,12 @@ class CharacterEnv : public Env {
   mjData_* physics_data() const override { return world_.data(); }
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
+  // Starts in groups a caller can choose among (humanoid_forward: one group per clip of its list),
+  // so a behaviour context can start each episode from its own clip. The sampler reads the choice.
+  int start_groups() const { return start_groups_; }
+  void set_start_groups(int n) { start_groups_ = n; }
+  int start_group() const { return start_group_; }  // -1: starts from every group
+  void choose_start_group(int g);                   // Error outside [-1, start_groups())
   void add_reward_term(std::string name, RewardTerm term) { rewards_.emplace_back(std::move(name), std::move(term)); }
   // A task's own observation part (a goal, say), appended after the named ones: `fill` writes
   // `size` values. Add parts before the first reset.
@@ -124,6 +130,7 @@ class CharacterEnv : public Env {
   std::vector<ExtraPart> extra_;
   int extra_size_ = 0;
   InitSampler init_sampler_;
+  int start_groups_ = 0, start_group_ = -1;
   Pusher pusher_;
   std::unique_ptr<ProjectileLauncher> launcher_;
   double time_ = 0.0, elapsed_ = 0.0;

@@ -1,13 +1,22 @@
 #include "env/context_env.hpp"
 
 #include "core/error.hpp"
+#include "env/character_env.hpp"
 
 namespace mimic {
 
-ContextEnv::ContextEnv(std::unique_ptr<Env> inner, int contexts, int period) : inner_(std::move(inner)), contexts_(contexts), period_(period) {
+ContextEnv::ContextEnv(std::unique_ptr<Env> inner, int contexts, int period, bool starts_by_context)
+    : inner_(std::move(inner)), contexts_(contexts), period_(period), starts_by_context_(starts_by_context) {
   if (!inner_) throw Error("context: no environment to wrap");
   if (contexts < 2) throw Error("context: needs at least 2 contexts, got " + std::to_string(contexts));
   if (period < 0) throw Error("context: the period must be >= 0 steps");
+  if (starts_by_context) {
+    character_ = dynamic_cast<CharacterEnv*>(inner_.get());
+    const int groups = character_ ? character_->start_groups() : 0;
+    if (groups != contexts)
+      throw Error("context: starts by context need one start clip per context: " + std::to_string(contexts) + " contexts, " +
+                  std::to_string(groups) + " clips to start from");
+  }
 }
 
 std::vector<ObservationSlice> ContextEnv::observation_layout() const {
@@ -24,10 +33,22 @@ Eigen::VectorXd ContextEnv::with_context(const Eigen::VectorXd& obs) const {
 }
 
 Eigen::VectorXd ContextEnv::reset(std::mt19937_64& rng) {
-  const Eigen::VectorXd obs = inner_->reset(rng);
-  rng_.seed(rng());
-  const int drawn = std::uniform_int_distribution<int>(0, contexts_ - 1)(rng_);
-  if (!held_) context_ = drawn;  // drawn either way: a held context leaves the episode's draws as they were
+  // Drawn either way: a held context leaves the episode's draws as they were. Starting from the
+  // context's clip needs the context first; otherwise the inner env draws first, as it always has.
+  auto draw = [&] {
+    rng_.seed(rng());
+    const int drawn = std::uniform_int_distribution<int>(0, contexts_ - 1)(rng_);
+    if (!held_) context_ = drawn;
+  };
+  Eigen::VectorXd obs;
+  if (character_) {
+    draw();
+    character_->choose_start_group(context_);
+    obs = inner_->reset(rng);
+  } else {
+    obs = inner_->reset(rng);
+    draw();
+  }
   steps_ = 0;
   return with_context(obs);
 }

@@ -4,16 +4,23 @@
 // discriminator sees. The context is drawn uniformly at every start and re-drawn every `period`
 // steps during training (seed 000: every 5 s), so the policy also learns the transitions between
 // behaviours; at run time a keyboard or a high-level controller sets it (set_context).
+// With starts_by_context, an episode also starts from its context's own clip (the inner
+// character env's start group of that index), so the context matches the motion it starts in.
 #include <memory>
 
 #include "env/env.hpp"
 
 namespace mimic {
+class CharacterEnv;
+}
+
+namespace mimic {
 
 class ContextEnv : public Env {
  public:
-  // `contexts` >= 2; `period` steps between draws (0: only at reset). Throws Error otherwise.
-  ContextEnv(std::unique_ptr<Env> inner, int contexts, int period);
+  // `contexts` >= 2; `period` steps between draws (0: only at reset). starts_by_context needs a
+  // character env with one start group per context. Throws Error otherwise.
+  ContextEnv(std::unique_ptr<Env> inner, int contexts, int period, bool starts_by_context = false);
 
   int observation_size() const override { return inner_->observation_size() + contexts_; }
   int action_size() const override { return inner_->action_size(); }
@@ -34,13 +41,16 @@ class ContextEnv : public Env {
   bool context_held() const { return held_; }
   int contexts() const { return contexts_; }
   int period() const { return period_; }  // steps between draws (0: only at reset)
+  bool starts_by_context() const { return starts_by_context_; }
   Env& inner() { return *inner_; }  // the wrapped environment (e.g. to pose its character from a clip)
 
  private:
   Eigen::VectorXd with_context(const Eigen::VectorXd& obs) const;
   std::unique_ptr<Env> inner_;
+  CharacterEnv* character_ = nullptr;  // inner_ when starts_by_context
   int contexts_, period_, context_ = 0, steps_ = 0;
   bool held_ = false;
+  bool starts_by_context_ = false;
   std::mt19937_64 rng_;  // seeded from reset's generator: re-draws replay with the episode
 };
 

@@ -151,14 +151,19 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   } catch (const Error& e) {
     reader.fail(env, e.what());
   }
-  // Any environment may carry seed 000's behaviour context: context: {count: K, period: steps}.
+  // Any environment may carry seed 000's behaviour context: context: {count: K, period: steps,
+  // starts: any | by_context}; by_context starts each episode from its context's clip (clip i of
+  // a humanoid_forward list for context i).
   const YAML::Node context = s.child("context");
   if (context.IsDefined()) {
     ConfigSection c(reader, context, "env.context");
     const int count = static_cast<int>(c.integer("count", 2, 2, 1024));
     const int period = static_cast<int>(c.integer("period", 0, 0, 100'000'000));
+    const bool by_context = c.choice("starts", "any", {"any", "by_context"}) == "by_context";
     c.finish();
-    f = [inner = f, count, period] { return std::unique_ptr<Env>(std::make_unique<ContextEnv>(inner(), count, period)); };
+    f = [inner = f, count, period, by_context] {
+      return std::unique_ptr<Env>(std::make_unique<ContextEnv>(inner(), count, period, by_context));
+    };
   }
   s.finish();
   try {

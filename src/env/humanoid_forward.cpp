@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <span>
 #include <utility>
 
 #include "core/error.hpp"
@@ -66,7 +67,7 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const std
 
 // A start time uniform over all clips' frames together (seed 004's integrated learning draws
 // poses uniformly from the collection), as the clip and the time on it.
-std::pair<const Clip*, double> draw_clip_time(const std::vector<std::shared_ptr<const Clip>>& clips, std::mt19937_64& rng) {
+std::pair<const Clip*, double> draw_clip_time(std::span<const std::shared_ptr<const Clip>> clips, std::mt19937_64& rng) {
   double total = 0;
   for (const auto& c : clips) total += c->duration();
   double t = std::uniform_real_distribution<double>(0.0, total)(rng);
@@ -193,8 +194,10 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   const double noise = cfg.init_noise;
   if (cfg.init == HumanoidForwardConfig::Init::Mocap) {
     const CharacterEnv* self = env.get();  // the sampler lives in the env it reads
+    env->set_start_groups(static_cast<int>(clips.size()));
     env->set_init_sampler([clips, sk, noise, self](std::mt19937_64& rng) {
-      const auto [clip, when] = draw_clip_time(clips, rng);
+      const int group = self->start_group();
+      const auto [clip, when] = group < 0 ? draw_clip_time(clips, rng) : draw_clip_time(std::span(clips).subspan(static_cast<std::size_t>(group), 1), rng);
       InitState s = place_at_track_start(self->state_on_clip(*clip, when));
       s.time = 0.0;
       if (clip->loop != LoopMode::Wrap) s.clip_left = clip->duration() - when;  // seed 004: a kick ends with its clip

@@ -61,7 +61,8 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
                                                         std::shared_ptr<const Clip> clip,
                                                         const HumanoidForwardConfig& cfg = {});
 // Mocap starts from several clips (seed 004's integrated learning): a start time uniform over
-// all their frames together, so each clip starts in proportion to its duration.
+// all their frames together, so each clip starts in proportion to its duration. Each clip is a
+// start group (CharacterEnv::choose_start_group): choosing clip i starts from it alone.
 std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
                                                         std::vector<std::shared_ptr<const Clip>> clips,
                                                         const HumanoidForwardConfig& cfg = {});
