@@ -178,6 +178,13 @@ run_ok(eval ${OUT}/gail_run --episodes 1 --latency --json ${OUT}/gail_latency.js
 file(READ ${OUT}/gail_latency.json gail_latency)
 expect_in("${gail_latency}" "\"discriminators\": [{\"source\": \"gail\", \"us\": ")
 # An exported model (no optimiser moments, no replay) acts like its run and is not resumed.
+# The discriminator's rewards for a demonstrations file (no behaviour context in this run).
+run_ok(score ${OUT}/gail_run --demos ${OUT}/demos.csv --json ${OUT}/gail_score.json)
+expect_in("${LAST_OUT}" "transitions scored by ${OUT}/gail_run")
+expect_in("${LAST_OUT}" "  gail                   reward ")
+file(READ ${OUT}/gail_score.json gail_score)
+expect_in("${gail_score}" "\"scores\": [{\"source\": \"gail\", \"context\": null, \"mean\": ")
+run_fails("gail: its discriminator has no behaviour context" score ${OUT}/gail_run --demos ${OUT}/demos.csv --context 0)
 run_ok(export ${OUT}/gail_run -o ${OUT}/gail_model)
 expect_in("${LAST_OUT}" "wrote ${OUT}/gail_model/checkpoint.pt (")
 run_ok(eval ${OUT}/gail_model --episodes 1)
@@ -230,6 +237,7 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${context_json}" "\"context\": 1}")
   run_ok(eval ${OUT}/context_run --episodes 1 --trials 1 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --context 0 --robustness 0,5 --robustness-trials 1 --robustness-seconds 0.5)
   expect_in("${LAST_OUT}" "frames survived")
+  run_fails("this run has no discriminator (rewards with source gail or iccgan) to score with" score ${OUT}/context_run --demos ${OUT}/walk_context_demos.csv)
   run_fails("give --context K" eval ${OUT}/context_run --episodes 1 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt)
   run_fails("the run has contexts 0 to 1" eval ${OUT}/context_run --episodes 1 --clip ${DATA}/deepmimic/motions/humanoid3d_run.txt --context 2)
   # Behaviour switches: both ordered pairs, each context held 0.4 s (12 steps) in the 1 s episodes.

@@ -25,6 +25,11 @@ std::string clip_summary(const Clip& clip);
 // like the clip, else a simple body built on the clip's own skeleton. Throws if they do not fit.
 CharacterModel character_for(const Clip& clip, const std::filesystem::path& input, const LoadOptions& load);
 
+// JSON pieces of the commands' --json files: a quoted, escaped string; a number, null when not
+// finite (JSON has no NaN).
+std::string json_string(const std::string& s);
+std::string json_number(double v);
+
 // Writes a clip to .mclip, DeepMimic .txt or a .svg picture, by the extension of `out`.
 void write_motion(const Clip& clip, const std::filesystem::path& out);
 

@@ -25,8 +25,6 @@
 
 namespace mimic::app {
 
-namespace {
-
 std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -36,8 +34,9 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-// JSON has no NaN: unknown figures are null.
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
+
+namespace {
 
 struct EvalArgs {
   std::filesystem::path run, json, clip, character;

@@ -3,6 +3,7 @@
 // baseline.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -110,6 +111,50 @@ void add_imitation_commands(CLI::App& app) {
     trainer.save_checkpoint(clone->out / "checkpoint.pt");
     spdlog::info("cloned {} samples ({} episodes) in {} epochs: final mean squared error {:.4f}; wrote {}", d.size(), d.episodes(),
                  clone->epochs, loss, clone->out.string());
+  });
+
+  // The discriminators' view of a motion: seed 004 switches policies by these scores, and a
+  // context run's discriminator that tells its contexts apart scores a clip higher under its own.
+  struct ScoreArgs {
+    std::filesystem::path run, demos, json;
+    int context = -1;
+  };
+  auto score = std::make_shared<ScoreArgs>();
+  CLI::App* sc = app.add_subcommand("score", "a run's discriminator rewards for demonstrations (how expert-like it finds them), per behaviour context");
+  sc->add_option("run", score->run, "training run or model directory (config.yaml + checkpoint.pt) with gail or iccgan rewards")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  sc->add_option("--demos", score->demos, "demonstrations (.csv, from mimic record or record-clip)")->required()->check(CLI::ExistingFile);
+  sc->add_option("--context", score->context, "behaviour context to score under (default: each of the run's; none without)")
+      ->check(CLI::NonNegativeNumber);
+  sc->add_option("--json", score->json, "also write the scores as JSON");
+  sc->callback([score] {
+    const std::unique_ptr<Trainer> trainer = Trainer::load_policy(score->run, true);
+    const Demonstrations d = read_demonstrations(score->demos);
+    std::vector<int> contexts{score->context};
+    if (score->context < 0) {
+      const std::unique_ptr<Env> env = trainer->make_env();
+      if (const auto* c = dynamic_cast<const ContextEnv*>(env.get())) {
+        contexts.clear();
+        for (int k = 0; k < c->contexts(); ++k) contexts.push_back(k);
+      }
+    }
+    spdlog::info("{}: {} transitions scored by {}", d.source, d.size(), score->run.string());
+    std::string rows;
+    for (int context : contexts) {
+      for (const auto& [source, values] : trainer->discriminator_scores(d, context)) {
+        const double mean = mean_of(values), sd = std_of(values);
+        const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+        spdlog::info("  {:<10} {:<11} reward {:.3f} +- {:.3f} (min {:.3f}, max {:.3f})", source,
+                     context < 0 ? "" : fmt::format("context {}", context), mean, sd, *lo, *hi);
+        rows += fmt::format("{}{{\"source\": {}, \"context\": {}, \"mean\": {}, \"std\": {}, \"min\": {}, \"max\": {}}}",
+                            rows.empty() ? "" : ", ", json_string(source), context < 0 ? "null" : std::to_string(context), json_number(mean),
+                            json_number(sd), json_number(*lo), json_number(*hi));
+      }
+    }
+    if (!score->json.empty())
+      write_file_atomic(score->json, fmt::format("{{\"run\": {}, \"demos\": {}, \"transitions\": {}, \"scores\": [{}]}}\n",
+                                                 json_string(score->run.string()), json_string(d.source), d.size(), rows));
   });
 }
 

@@ -1,5 +1,6 @@
 #include "learn/adversarial_reward.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/error.hpp"
@@ -99,6 +100,24 @@ std::vector<std::pair<std::string, double>> AdversarialRewardSource::update(cons
                                                 {"policy_score", s.policy_score}};
   if (disc_.config().gradient_penalty > 0) m.emplace_back("penalty", s.penalty);
   return m;
+}
+
+std::vector<double> AdversarialRewardSource::score(const Demonstrations& d, int context) {
+  TransitionFeatures f = features_;
+  if (f.contexts > 0 && (context < 0 || context >= f.contexts))
+    throw Error(name_ + ": its discriminator takes a behaviour context: give one of 0 to " + std::to_string(f.contexts - 1));
+  if (f.contexts == 0 && context >= 0) throw Error(name_ + ": its discriminator has no behaviour context");
+  f.fixed_context = context;
+  const int needed = f.columns.empty() ? 0 : *std::max_element(f.columns.begin(), f.columns.end()) + 1;
+  if (d.obs.cols() < needed)
+    throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values; " + name_ + "'s features read " +
+                std::to_string(needed));
+  if (f.transition == "sa" && d.action.cols() != f.action_size)
+    throw Error(d.source + ": demonstrations have " + std::to_string(d.action.cols()) + " action values; " + name_ + " scores (s, a) with " +
+                std::to_string(f.action_size));
+  const torch::NoGradGuard no_grad;
+  const torch::Tensor r = disc_.reward(to_tensor(f.of(d))).to(torch::kFloat64).contiguous();
+  return {r.data_ptr<double>(), r.data_ptr<double>() + r.numel()};
 }
 
 void AdversarialRewardSource::save(torch::serialize::OutputArchive& a) const { disc_.save(a); }

@@ -52,6 +52,11 @@ class AdversarialRewardSource : public RewardSource {
   void save(torch::serialize::OutputArchive& a) const override;
   void load(torch::serialize::InputArchive& a) override;
   void load_widened(torch::serialize::InputArchive& a, int added_contexts) override;
+  // The reward this source gives each transition of `d` (observations without a context), as if
+  // a policy had made it under behaviour context `context` (-1 for a source without contexts):
+  // how expert-like the discriminator finds a motion, and whether it tells the contexts apart.
+  // Error naming the file where `d` does not fit the features, or for a context out of range.
+  std::vector<double> score(const Demonstrations& d, int context);
   Discriminator& discriminator() { return disc_; }
   const TransitionFeatures& features() const { return features_; }
 

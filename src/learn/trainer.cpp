@@ -11,6 +11,7 @@
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
 #include "learn/advantage.hpp"
+#include "learn/adversarial_reward.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
@@ -370,6 +371,21 @@ Demonstrations Trainer::record(int episodes, int every, bool deterministic, std:
     d.episode.push_back(e);
   }
   return d;
+}
+
+std::vector<std::pair<std::string, std::vector<double>>> Trainer::discriminator_scores(const Demonstrations& d, int context) {
+  // The run's own observation without its context: what record-clip and record write.
+  int own = impl_->collector->frame_size();
+  for (const ObservationSlice& s : impl_->factory()->observation_layout())
+    if (s.name == "context") own -= s.size;
+  if (d.obs.cols() != own)
+    throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values, this run's environment " +
+                std::to_string(own) + " (without its context)");
+  std::vector<std::pair<std::string, std::vector<double>>> out;
+  for (auto& [weight, source] : impl_->rewards)
+    if (auto* adversarial = dynamic_cast<AdversarialRewardSource*>(source.get())) out.emplace_back(adversarial->name(), adversarial->score(d, context));
+  if (out.empty()) throw Error("this run has no discriminator (rewards with source gail or iccgan) to score with");
+  return out;
 }
 
 }  // namespace mimic

@@ -77,6 +77,12 @@ class Trainer {
   // sub-sampled every 20 steps). `returns` receives each episode's environment return.
   Demonstrations record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns = nullptr);
 
+  // The scores of the run's adversarial reward sources (gail, iccgan) on demonstrations `d`, by
+  // source name: each transition's reward under behaviour context `context` (-1 in a run without
+  // contexts). The discriminators must have been loaded (load_policy with reward_sources). Error
+  // when the run has none or `d` does not fit this run's observations.
+  std::vector<std::pair<std::string, std::vector<double>>> discriminator_scores(const Demonstrations& d, int context);
+
   // Acting outside training (evaluation, videos, embedding): a new environment as the run trains
   // in, and the policy's mean action for a raw policy input (`history` frames, oldest first).
   std::unique_ptr<Env> make_env() const;

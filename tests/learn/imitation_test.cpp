@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
 #include "env/humanoid_forward.hpp"
@@ -360,6 +361,18 @@ TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
   EXPECT_NEAR(small_after, 1.0, 0.3);
   EXPECT_NEAR(large_after, 2.0, 0.4);
   EXPECT_GT(large_after - small_after, 0.6);
+  // The discriminator tells the contexts apart: each expert file scores higher under its own
+  // context than under the other, relative to the other file (mimic score).
+  auto score = [&](const Demonstrations& d, int context) { return mean_of(t.discriminator_scores(d, context).at(0).second); };
+  const double s00 = score(small, 0), s01 = score(small, 1), s10 = score(large, 0), s11 = score(large, 1);
+  std::cout << "discriminator reward: small orbit " << s00 << " (context 0), " << s01 << " (context 1); large orbit " << s10
+            << " (context 0), " << s11 << " (context 1)\n";
+  EXPECT_GT(s00 - s01, s10 - s11 + 0.1);
+  EXPECT_THROW(t.discriminator_scores(small, 2), Error);   // outside the run's contexts
+  EXPECT_THROW(t.discriminator_scores(small, -1), Error);  // a context run's discriminator needs one
+  Demonstrations narrow = small;
+  narrow.obs = small.obs.leftCols(1);
+  EXPECT_THROW(t.discriminator_scores(narrow, 0), Error);  // not this run's observations
 }
 
 TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
