@@ -9,6 +9,8 @@
 #   LOG_STD   `learnt` (default: the source's noise, then PPO's) or a fixed log σ (e.g. −1.66)
 #   STARTS    `any` (default: the config's, episodes start from either clip) or `by_context` (each
 #             episode starts from its context's clip: env.context.starts)
+#   PER_CONTEXT  1: one discriminator per context (rewards.0.per_context), each from the source's
+#             discriminator; default 0: one discriminator with the one-hot among its inputs
 #   ITERATIONS (default: the config's 5,000 of 4,096 samples), THREADS (default 1), TRIALS (20)
 # Resumable: a run with a checkpoint is resumed (stop it with Ctrl-C at any time); evaluations are
 # redone on each call, since the run may have moved on. Needs ../shared/data.
@@ -18,6 +20,7 @@ out=${1:-runs/walk_run_context}
 init=${INIT:-models/humanoid_walk_iccgan}
 log_std=${LOG_STD:-learnt}
 starts=${STARTS:-any}
+per_context=${PER_CONTEXT:-0}
 threads=${THREADS:-1}
 trials=${TRIALS:-20}
 mimic=${MIMIC:-build/src/mimic}
@@ -40,6 +43,7 @@ else
   [ "$init" != none ] && args+=(--init-from "$init")
   [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
   [ "$starts" != any ] && args+=(--set "env.context.starts=$starts")
+  [ "$per_context" = 1 ] && args+=(--set rewards.0.per_context=true)
   "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
 fi
 # Each clip under each context: a policy that heeds its context does worse under the other one.

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "learn/input_widening.hpp"
+#include "learn/per_context_reward.hpp"
 
 namespace mimic {
 
@@ -215,6 +216,9 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   d.reward_clip = s.number("reward_clip", d.reward_clip, 1e-6, 1e6);
   d.reward_offset = s.number("reward_offset", d.reward_offset, -1e6, 1e6);
   d.standardise = s.choice("standardise", d.standardise, {"expert", "mixture"});
+  const bool separate = s.boolean("per_context", false);
+  if (separate && per_context.empty())
+    throw Error(context.config_source + ": " + s.name("per_context") + " needs " + s.name("experts") + " (one file per behaviour context)");
   {
     ConfigSection n(reader, s.child("network"), s.name("network"));
     d.net = read_network(n, d.net);
@@ -241,6 +245,19 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
     for (const auto& p : context.layout)
       if (p.name != "context") names.push_back(p.name);
   f.columns = slice_columns(context.layout, context.frame_size, names, where);
+  if (separate) {
+    // One discriminator per context, each on the observation without its one-hot.
+    TransitionFeatures own = f;
+    own.contexts = 0, own.context_offset = -1;
+    RewardSourceContext without = context;
+    without.frame_size -= f.contexts;
+    std::vector<std::unique_ptr<AdversarialRewardSource>> parts;
+    for (std::size_t k = 0; k < per_context.size(); ++k) {
+      const FeatureRows part = expert_features(per_context[k], without, own, names, episodes, -1, features_key);
+      parts.push_back(std::make_unique<AdversarialRewardSource>(kind, own, part, d, context.seed + k));
+    }
+    return std::make_unique<PerContextRewardSource>(kind, f.context_offset, std::move(parts));
+  }
   FeatureRows expert(0, f.width());
   for (std::size_t k = 0; k < per_context.size(); ++k) {
     const FeatureRows part = expert_features(per_context[k], context, f, names, episodes, static_cast<int>(k), features_key);

@@ -4,6 +4,7 @@
 
 #include "core/stopwatch.hpp"
 #include "learn/adversarial_reward.hpp"
+#include "learn/per_context_reward.hpp"
 #include "learn/trainer.hpp"
 #include "learn/trainer_impl.hpp"
 
@@ -39,6 +40,8 @@ std::vector<RuntimeCost> discriminator_costs(Trainer& trainer, int passes) {
   std::vector<RuntimeCost> out;
   for (auto& entry : trainer.impl().rewards) {
     auto* adversarial = dynamic_cast<AdversarialRewardSource*>(entry.second.get());
+    // One discriminator per context: a step is scored by its context's alone.
+    if (auto* separate = dynamic_cast<PerContextRewardSource*>(entry.second.get())) adversarial = &separate->part(0);
     if (!adversarial) continue;
     Discriminator& d = adversarial->discriminator();
     RuntimeCost c{adversarial->name(), 0, 0};

@@ -12,6 +12,7 @@
 #include "core/stopwatch.hpp"
 #include "learn/advantage.hpp"
 #include "learn/adversarial_reward.hpp"
+#include "learn/per_context_reward.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
@@ -383,7 +384,10 @@ std::vector<std::pair<std::string, std::vector<double>>> Trainer::discriminator_
                 std::to_string(own) + " (without its context)");
   std::vector<std::pair<std::string, std::vector<double>>> out;
   for (auto& [weight, source] : impl_->rewards)
-    if (auto* adversarial = dynamic_cast<AdversarialRewardSource*>(source.get())) out.emplace_back(adversarial->name(), adversarial->score(d, context));
+    if (auto* adversarial = dynamic_cast<AdversarialRewardSource*>(source.get()))
+      out.emplace_back(adversarial->name(), adversarial->score(d, context));
+    else if (auto* separate = dynamic_cast<PerContextRewardSource*>(source.get()))
+      out.emplace_back(separate->name(), separate->score(d, context));
   if (out.empty()) throw Error("this run has no discriminator (rewards with source gail or iccgan) to score with");
   return out;
 }

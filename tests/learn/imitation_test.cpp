@@ -16,6 +16,7 @@
 #include "motion/clip_io.hpp"
 #include "motion/deepmimic.hpp"
 #include "learn/adversarial_reward.hpp"
+#include "learn/per_context_reward.hpp"
 #include "learn/trainer_impl.hpp"
 #include "toy_env.hpp"
 #include "../humanoid_data.hpp"
@@ -373,6 +374,103 @@ TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
   Demonstrations narrow = small;
   narrow.obs = small.obs.leftCols(1);
   EXPECT_THROW(t.discriminator_scores(narrow, 0), Error);  // not this run's observations
+}
+
+// The same two behaviours with one discriminator per context (per_context: true): each learns
+// from its context's file and samples alone, and each rates its own file above the other's.
+TEST(AdversarialImitation, ADiscriminatorPerContextTeachesBothBehaviours) {
+  const auto dir = test::temp_dir("gail_per_context");
+  const Demonstrations small = oscillator_expert(20);
+  Demonstrations large = small;
+  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", small);
+  write_demonstrations(dir / "large.csv", large);
+  TrainOptions o;
+  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  o.run_dir = dir / "run";
+  const int iterations = 120;
+  std::string text = gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1, per_context: true");
+  text.replace(text.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
+               "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]");
+  Trainer t(parse_train_config(text, "ctx.yaml"), o);
+  ASSERT_NE(dynamic_cast<PerContextRewardSource*>(t.impl().rewards[0].second.get()), nullptr);
+  IterationMetrics last;
+  for (int i = 0; i < iterations; ++i) last = t.iterate();
+  EXPECT_FALSE(std::isnan(last.get("gail_policy_accuracy_c0")));  // each part's metrics, by context
+  EXPECT_FALSE(std::isnan(last.get("gail_policy_accuracy_c1")));
+  auto radius_in = [&](int context) {
+    ContextEnv env(std::make_unique<test::OscillatorEnv>(), 2, 0);
+    std::mt19937_64 rng(3);
+    double sum = 0;
+    int n = 0;
+    for (int e = 0; e < 10; ++e) {
+      Eigen::VectorXd obs = env.reset(rng);
+      env.set_context(context);
+      obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
+      for (int k = 0; k < test::OscillatorEnv::kLength; ++k) {
+        obs = env.step(t.act(obs)).observation;
+        if (k >= test::OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
+      }
+    }
+    return sum / n;
+  };
+  const double small_after = radius_in(0), large_after = radius_in(1);
+  auto score = [&](const Demonstrations& d, int context) { return mean_of(t.discriminator_scores(d, context).at(0).second); };
+  const double s00 = score(small, 0), s01 = score(small, 1), s10 = score(large, 0), s11 = score(large, 1);
+  std::cout << "radius with context 0: " << small_after << ", with context 1: " << large_after << "; discriminator reward: small orbit "
+            << s00 << " (part 0), " << s01 << " (part 1); large orbit " << s10 << " (part 0), " << s11 << " (part 1)\n";
+  EXPECT_NEAR(small_after, 1.0, 0.3);  // both started near 2.37 (the test above)
+  EXPECT_GT(large_after - small_after, 0.6);
+  EXPECT_GT(s00, s10);  // part 0 prefers the small orbit, part 1 the large one
+  EXPECT_GT(s11, s01);
+  EXPECT_THROW(t.discriminator_scores(small, -1), Error);
+  // Saved and loaded part by part.
+  t.save_checkpoint(dir / "saved.pt");
+  TrainOptions elsewhere = o;
+  elsewhere.run_dir = dir / "again";
+  Trainer again(parse_train_config(text, "ctx.yaml"), elsewhere);
+  again.load_checkpoint(dir / "saved.pt");
+  EXPECT_DOUBLE_EQ(mean_of(again.discriminator_scores(large, 1).at(0).second), s11);
+  EXPECT_DOUBLE_EQ(mean_of(again.discriminator_scores(small, 0).at(0).second), s00);
+  // per_context needs one file per context.
+  const std::string single = error_of([&] {
+    Trainer bad(parse_train_config(gail_config(dir / "small.csv", 1, ", per_context: true"), "one.yaml"), oscillator_options());
+  });
+  EXPECT_NE(single.find("'rewards.per_context' needs 'rewards.experts'"), std::string::npos) << single;
+}
+
+// A single-behaviour run starts a per-context run: every part begins as its discriminator.
+TEST(AdversarialImitation, EveryDiscriminatorPerContextStartsAsTheSingleBehavioursOne) {
+  const auto dir = test::temp_dir("gail_init_per_context");
+  Demonstrations small = oscillator_expert(4);
+  Demonstrations large = small;
+  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", small);
+  write_demonstrations(dir / "large.csv", large);
+  const std::string text = gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, epochs: 2");
+  TrainOptions o = oscillator_options();
+  o.run_dir = dir / "source";
+  Trainer source(parse_train_config(text, "osc.yaml"), o);
+  source.run();
+  std::string two = text;
+  two.replace(two.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
+              "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "], per_context: true");
+  TrainOptions c = oscillator_options();
+  c.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  c.run_dir = dir / "context";
+  c.init_from = dir / "source";
+  Trainer t(parse_train_config(two, "osc_context.yaml"), c);
+  EXPECT_EQ(t.reward_sources_initialised(), 1);
+  for (const Demonstrations& d : {small, large}) {
+    const std::vector<double> before = source.discriminator_scores(d, -1).at(0).second;
+    for (int context : {0, 1}) {
+      const std::vector<double> now = t.discriminator_scores(d, context).at(0).second;
+      ASSERT_EQ(now.size(), before.size());
+      for (std::size_t i = 0; i < now.size(); ++i) EXPECT_NEAR(now[i], before[i], 1e-5) << "context " << context << ", sample " << i;
+    }
+  }
+  t.run();  // and trains on
+  EXPECT_EQ(t.iteration(), 2);
 }
 
 TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
