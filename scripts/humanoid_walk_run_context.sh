@@ -11,6 +11,8 @@
 #             episode starts from its context's clip: env.context.starts)
 #   PER_CONTEXT  1: one discriminator per context (rewards.0.per_context), each from the source's
 #             discriminator; default 0: one discriminator with the one-hot among its inputs
+#   MISMATCHED   other contexts' clip samples per policy sample that the discriminator learns to
+#             call fake (rewards.0.mismatched; default 0: none)
 #   ITERATIONS (default: the config's 5,000 of 4,096 samples), THREADS (default 1), TRIALS (20)
 # Resumable: a run with a checkpoint is resumed (stop it with Ctrl-C at any time); evaluations are
 # redone on each call, since the run may have moved on. Needs ../shared/data.
@@ -21,6 +23,7 @@ init=${INIT:-models/humanoid_walk_iccgan}
 log_std=${LOG_STD:-learnt}
 starts=${STARTS:-any}
 per_context=${PER_CONTEXT:-0}
+mismatched=${MISMATCHED:-0}
 threads=${THREADS:-1}
 trials=${TRIALS:-20}
 mimic=${MIMIC:-build/src/mimic}
@@ -44,6 +47,7 @@ else
   [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
   [ "$starts" != any ] && args+=(--set "env.context.starts=$starts")
   [ "$per_context" = 1 ] && args+=(--set rewards.0.per_context=true)
+  [ "$mismatched" != 0 ] && args+=(--set "rewards.0.mismatched=$mismatched")
   "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
 fi
 # Each clip under each context: a policy that heeds its context does worse under the other one.

@@ -47,6 +47,16 @@ torch::Tensor to_tensor(const FeatureRows& m) {
   return torch::from_blob(const_cast<float*>(m.data()), {m.rows(), m.cols()}, torch::kFloat32).clone();
 }
 
+// The parts' rows one after another.
+FeatureRows stacked(const std::vector<FeatureRows>& parts, int width) {
+  Eigen::Index rows = 0;
+  for (const auto& p : parts) rows += p.rows();
+  FeatureRows out(rows, width);
+  Eigen::Index at = 0;
+  for (const auto& p : parts) out.middleRows(at, p.rows()) = p, at += p.rows();
+  return out;
+}
+
 }  // namespace
 
 FeatureRows TransitionFeatures::of(const Rollout& r) const {
@@ -100,6 +110,10 @@ std::vector<std::pair<std::string, double>> AdversarialRewardSource::update(cons
                                                 {"expert_score", s.expert_score},
                                                 {"policy_score", s.policy_score}};
   if (disc_.config().gradient_penalty > 0) m.emplace_back("penalty", s.penalty);
+  if (disc_.config().mismatched > 0 && disc_.mismatched().size(0) > 0) {
+    m.emplace_back("mismatched_accuracy", s.mismatched_accuracy);
+    m.emplace_back("mismatched_score", s.mismatched_score);
+  }
   return m;
 }
 
@@ -219,6 +233,9 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   const bool separate = s.boolean("per_context", false);
   if (separate && per_context.empty())
     throw Error(context.config_source + ": " + s.name("per_context") + " needs " + s.name("experts") + " (one file per behaviour context)");
+  d.mismatched = s.number("mismatched", 0.0, 0, 100);
+  if (d.mismatched > 0 && per_context.empty())
+    throw Error(context.config_source + ": " + s.name("mismatched") + " needs " + s.name("experts") + " (one file per behaviour context)");
   {
     ConfigSection n(reader, s.child("network"), s.name("network"));
     d.net = read_network(n, d.net);
@@ -251,21 +268,31 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
     own.contexts = 0, own.context_offset = -1;
     RewardSourceContext without = context;
     without.frame_size -= f.contexts;
+    std::vector<FeatureRows> files;
+    for (const auto& path : per_context) files.push_back(expert_features(path, without, own, names, episodes, -1, features_key));
     std::vector<std::unique_ptr<AdversarialRewardSource>> parts;
-    for (std::size_t k = 0; k < per_context.size(); ++k) {
-      const FeatureRows part = expert_features(per_context[k], without, own, names, episodes, -1, features_key);
-      parts.push_back(std::make_unique<AdversarialRewardSource>(kind, own, part, d, context.seed + k));
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      parts.push_back(std::make_unique<AdversarialRewardSource>(kind, own, files[k], d, context.seed + k));
+      if (d.mismatched > 0) {  // part k's mismatched samples: every other context's demonstrations
+        std::vector<FeatureRows> others;
+        for (std::size_t j = 0; j < files.size(); ++j)
+          if (j != k) others.push_back(files[j]);
+        parts.back()->discriminator().set_mismatched(to_tensor(stacked(others, own.width())));
+      }
     }
     return std::make_unique<PerContextRewardSource>(kind, f.context_offset, std::move(parts));
   }
-  FeatureRows expert(0, f.width());
-  for (std::size_t k = 0; k < per_context.size(); ++k) {
-    const FeatureRows part = expert_features(per_context[k], context, f, names, episodes, static_cast<int>(k), features_key);
-    FeatureRows joined(expert.rows() + part.rows(), f.width());
-    joined << expert, part;
-    expert = std::move(joined);
-  }
-  return std::make_unique<AdversarialRewardSource>(kind, std::move(f), expert, d, context.seed);
+  // One discriminator with the one-hot among its inputs: file k under context k is expert; under
+  // any other context, mismatched.
+  std::vector<FeatureRows> matched, mismatched;
+  for (std::size_t k = 0; k < per_context.size(); ++k)
+    for (std::size_t j = 0; j < per_context.size(); ++j)
+      if (j == k || d.mismatched > 0)
+        (j == k ? matched : mismatched)
+            .push_back(expert_features(per_context[k], context, f, names, episodes, static_cast<int>(j), features_key));
+  auto source = std::make_unique<AdversarialRewardSource>(kind, f, stacked(matched, f.width()), d, context.seed);
+  if (d.mismatched > 0) source->discriminator().set_mismatched(to_tensor(stacked(mismatched, f.width())));
+  return source;
 }
 
 }  // namespace mimic

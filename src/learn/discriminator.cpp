@@ -1,6 +1,7 @@
 #include "learn/discriminator.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "core/error.hpp"
@@ -56,12 +57,22 @@ Discriminator::Discriminator(torch::Tensor expert, const DiscriminatorConfig& cf
   if (cfg_.penalty_heads < 0) throw Error("discriminator: penalty_heads must be >= 0 (0: every head)");
   if (cfg_.penalty_of != "heads" && cfg_.penalty_of != "sum")
     throw Error("discriminator: penalty_of must be heads or sum, not '" + cfg_.penalty_of + "'");
+  if (!(cfg_.mismatched >= 0)) throw Error("discriminator: mismatched must be >= 0 (samples per policy sample)");
   if (cfg_.standardise != "expert" && cfg_.standardise != "mixture")
     throw Error("discriminator: standardise must be expert or mixture, not '" + cfg_.standardise + "'");
   set_statistics({});
   net_ = FeatureNet(static_cast<int>(expert_.size(1)), cfg_.heads, cfg_.net);
   optimizer_ = std::make_unique<torch::optim::Adam>(net_->parameters(), torch::optim::AdamOptions(cfg_.lr));
   replay_ = torch::empty({0, expert_.size(1)});
+  mismatched_ = torch::empty({0, expert_.size(1)});
+}
+
+void Discriminator::set_mismatched(torch::Tensor rows) {
+  rows = rows.to(torch::kFloat32).contiguous();
+  if (rows.dim() != 2 || (rows.size(0) > 0 && rows.size(1) != expert_.size(1)))
+    throw Error("discriminator: mismatched samples have " + std::to_string(rows.dim() == 2 ? rows.size(1) : 0) + " features, the expert's " +
+                std::to_string(expert_.size(1)));
+  mismatched_ = rows.size(0) > 0 ? rows : torch::empty({0, expert_.size(1)});
 }
 
 void Discriminator::set_statistics(const torch::Tensor& policy) {
@@ -106,15 +117,18 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
   const torch::Tensor policy = policy_in.to(torch::kFloat32).contiguous();
   if (policy.dim() != 2 || policy.size(1) != expert_.size(1))
     throw Error("discriminator: policy features have the wrong width");
-  const std::int64_t n_new = policy.size(0), n_expert = expert_.size(0);
+  const std::int64_t n_new = policy.size(0);
   DiscriminatorStats s;
   if (n_new == 0) return s;
-  std::uniform_int_distribution<std::int64_t> pick_expert(0, n_expert - 1);
-  auto expert_batch = [&](std::int64_t n) {
+  // n rows of `from`, drawn with replacement.
+  auto draw = [&](const torch::Tensor& from, std::int64_t n) {
+    std::uniform_int_distribution<std::int64_t> pick(0, from.size(0) - 1);
     std::vector<std::int64_t> idx(static_cast<std::size_t>(n));
-    for (auto& i : idx) i = pick_expert(rng_);
-    return expert_.index_select(0, index_tensor(idx));
+    for (auto& i : idx) i = pick(rng_);
+    return from.index_select(0, index_tensor(idx));
   };
+  auto expert_batch = [&](std::int64_t n) { return draw(expert_, n); };
+  const bool with_mismatched = cfg_.mismatched > 0 && mismatched_.size(0) > 0;
   {
     torch::NoGradGuard no_grad;
     const torch::Tensor p = forward(policy), e = forward(expert_batch(n_new));
@@ -122,6 +136,11 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
     s.policy_accuracy = (p < 0).to(torch::kFloat32).mean().item<double>();
     s.expert_score = e.mean().item<double>();
     s.policy_score = p.mean().item<double>();
+    if (with_mismatched) {
+      const torch::Tensor m = forward(draw(mismatched_, n_new));
+      s.mismatched_accuracy = (m < 0).to(torch::kFloat32).mean().item<double>();
+      s.mismatched_score = m.mean().item<double>();
+    }
   }
   replay_ = cfg_.replay > 0 ? torch::cat({replay_, policy}).slice(0, std::max<std::int64_t>(0, replay_.size(0) + n_new - cfg_.replay))
                             : policy;
@@ -138,7 +157,12 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
       const std::vector<std::int64_t> idx(order.begin() + start, order.begin() + start + b);
       const torch::Tensor p = standardise(replay_.index_select(0, index_tensor(idx)));
       const torch::Tensor e = standardise(expert_batch(b));
-      torch::Tensor loss = loss_of(net_->forward(e), net_->forward(p));
+      torch::Tensor fake = net_->forward(p);
+      if (with_mismatched) {  // the policy's side also holds other contexts' expert samples
+        const auto m = std::max<std::int64_t>(1, std::llround(cfg_.mismatched * static_cast<double>(b)));
+        fake = torch::cat({fake, net_->forward(standardise(draw(mismatched_, m)))});
+      }
+      torch::Tensor loss = loss_of(net_->forward(e), fake);
       s.loss += loss.item<double>();
       if (cfg_.gradient_penalty > 0) {
         std::vector<float> alpha(static_cast<std::size_t>(b));

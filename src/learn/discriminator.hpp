@@ -6,6 +6,7 @@
 // update), saved with the network.
 #include <torch/torch.h>
 
+#include <limits>
 #include <random>
 
 #include "learn/networks.hpp"
@@ -38,6 +39,9 @@ struct DiscriminatorConfig {
   // expert statistics a feature the clip barely varies is blown up on the policy's side, the
   // ensemble scores every policy sample far below -1 and the clipped reward goes flat.
   std::string standardise = "expert";
+  // Mismatched samples (set_mismatched) drawn per policy sample of a minibatch and labelled as the
+  // policy's (0: none).
+  double mismatched = 0.0;
 };
 
 // Losses on [batch, heads] outputs, averaged over heads.
@@ -60,6 +64,8 @@ struct DiscriminatorStats {
   // Before the update, on this iteration's policy samples and as many expert samples: fraction
   // classified correctly (expert D > 0, policy D < 0; averaged over heads) and mean outputs.
   double expert_accuracy = 0, policy_accuracy = 0, expert_score = 0, policy_score = 0;
+  // The same on as many mismatched samples, when the discriminator has them (else NaN).
+  double mismatched_accuracy = std::numeric_limits<double>::quiet_NaN(), mismatched_score = std::numeric_limits<double>::quiet_NaN();
 };
 
 class Discriminator {
@@ -71,6 +77,13 @@ class Discriminator {
   int input_size() const { return static_cast<int>(expert_.size(1)); }
   const torch::Tensor& expert() const { return expert_; }  // [samples, input], as given
   const DiscriminatorConfig& config() const { return cfg_; }
+  // Expert features that belong to another behaviour context (another context's demonstrations,
+  // or their one-hot set to a context not theirs): a matching-aware discriminator (Reed et al.
+  // 2016, GAN-CLS) learns to score them as the policy's, so that acting out one context's
+  // behaviour under another's earns the policy nothing. Used when config().mismatched > 0; an
+  // empty tensor clears them. Error on another width.
+  void set_mismatched(torch::Tensor rows);
+  const torch::Tensor& mismatched() const { return mismatched_; }
   // Raw outputs [batch, heads] for unstandardised features [batch, input].
   torch::Tensor forward(const torch::Tensor& features);
   // Per-sample reward [batch] by the configured loss's rule (no gradients).
@@ -97,6 +110,7 @@ class Discriminator {
 
   DiscriminatorConfig cfg_;
   torch::Tensor expert_, mean_, std_;
+  torch::Tensor mismatched_;  // [rows, input], possibly none
   torch::Tensor replay_;  // [kept, input]
   FeatureNet net_{nullptr};
   std::unique_ptr<torch::optim::Adam> optimizer_;

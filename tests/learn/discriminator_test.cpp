@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -210,6 +211,43 @@ TEST(Discriminator, LearnsToTellTwoDistributionsApartAndSavesExactly) {
     e.update(policy);
     EXPECT_TRUE(torch::equal(d.reward(expert), e.reward(expert))) << loss;
   }
+}
+
+// Mismatched samples (another context's demonstrations) join the policy's side: without them a
+// discriminator that has only seen the policy on the far side scores them highest of all.
+TEST(Discriminator, LearnsToScoreMismatchedSamplesAsThePolicys) {
+  torch::manual_seed(4);
+  const torch::Tensor expert = torch::randn({512, 2}) + torch::tensor({2.0f, 0.0f}),
+                      policy = torch::randn({512, 2}) - torch::tensor({2.0f, 0.0f}),
+                      other = torch::randn({512, 2}) + torch::tensor({6.0f, 0.0f});
+  auto trained = [&](double mismatched) {
+    DiscriminatorConfig cfg;
+    cfg.loss = "hinge", cfg.heads = 4, cfg.gradient_penalty = 1.0, cfg.mismatched = mismatched;
+    cfg.net.hidden = {32};
+    cfg.lr = 3e-3, cfg.epochs = 5, cfg.batch = 64;
+    auto d = std::make_unique<Discriminator>(expert, cfg, 3);
+    d->set_mismatched(other);
+    DiscriminatorStats s;
+    for (int i = 0; i < 20; ++i) s = d->update(policy);
+    return std::pair{std::move(d), s};
+  };
+  const auto [plain, plain_stats] = trained(0.0);
+  const auto [matching, stats] = trained(0.5);
+  const double other_plain = plain->reward(other).mean().item<double>(), other_matching = matching->reward(other).mean().item<double>();
+  std::cout << "reward of the other context's samples: " << other_plain << " without them as the policy's, " << other_matching
+            << " with; their accuracy " << stats.mismatched_accuracy << "\n";
+  EXPECT_GT(other_plain, 0.5);
+  EXPECT_LT(other_matching, -0.5);
+  EXPECT_GT(stats.mismatched_accuracy, 0.9);
+  EXPECT_LT(stats.mismatched_score, 0.0);
+  EXPECT_TRUE(std::isnan(plain_stats.mismatched_score));  // off: not measured
+  // The expert is still told from the policy.
+  EXPECT_GT(matching->reward(expert).mean().item<double>(), 0.5);
+  EXPECT_LT(matching->reward(policy).mean().item<double>(), -0.5);
+  EXPECT_THROW(matching->set_mismatched(torch::zeros({4, 3})), Error);
+  DiscriminatorConfig bad;
+  bad.mismatched = -1;
+  EXPECT_THROW(Discriminator(expert, bad, 1), Error);
 }
 
 TEST(Discriminator, RewardOffsetShiftsEveryReward) {

@@ -276,6 +276,58 @@ TEST(AdversarialConfig, BehaviourContextsTakeOneExpertFileEach) {
   EXPECT_NE(error("rewards: [{source: gail, expert: a.csv, " + experts + "}]").find("give either 'rewards.expert'"), std::string::npos);
 }
 
+// mismatched: each context's demonstrations, seen under another context, are the policy's.
+TEST(AdversarialConfig, MismatchedPairsEachFileWithTheOtherContexts) {
+  const auto dir = test::temp_dir("adversarial_mismatched");
+  const Demonstrations small = oscillator_expert(2);
+  Demonstrations large = small;
+  large.obs *= 2, large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", small);
+  write_demonstrations(dir / "large.csv", large);
+  TrainOptions o;
+  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 10); };
+  const std::string experts = "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]";
+  auto source_of = [&](Trainer& t) { return t.impl().rewards.at(0).second.get(); };
+  {  // one discriminator: the files again, each with the other one-hot
+    Trainer t(parse_train_config("collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, mismatched: 0.5, " + experts + "}\n", "ctx.yaml"), o);
+    auto* source = dynamic_cast<AdversarialRewardSource*>(source_of(t));
+    ASSERT_NE(source, nullptr);
+    const torch::Tensor m = source->discriminator().mismatched();
+    ASSERT_EQ(m.size(0), 2 * small.size());
+    const int last = small.size() - 1;
+    EXPECT_FLOAT_EQ(m[last][0].item<float>(), static_cast<float>(small.next_obs(last, 0)));
+    EXPECT_FLOAT_EQ(m[last][2].item<float>(), 0.0f);  // the small orbit under context 1
+    EXPECT_FLOAT_EQ(m[last][3].item<float>(), 1.0f);
+    EXPECT_FLOAT_EQ(m[small.size()][1].item<float>(), static_cast<float>(large.next_obs(0, 1)));
+    EXPECT_FLOAT_EQ(m[small.size()][2].item<float>(), 1.0f);  // the large orbit under context 0
+    EXPECT_FLOAT_EQ(m[small.size()][3].item<float>(), 0.0f);
+    EXPECT_EQ(source->discriminator().expert().size(0), 2 * small.size());
+    const IterationMetrics it = t.iterate();
+    EXPECT_GE(it.get("gail_mismatched_accuracy"), 0.0);
+    EXPECT_LE(it.get("gail_mismatched_accuracy"), 1.0);
+  }
+  {  // one per context: the other file, without a one-hot
+    Trainer t(parse_train_config("collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, per_context: true, mismatched: 1, " +
+                                     experts + "}\n",
+                                 "ctx.yaml"),
+              o);
+    auto* source = dynamic_cast<PerContextRewardSource*>(source_of(t));
+    ASSERT_NE(source, nullptr);
+    EXPECT_TRUE(torch::equal(source->part(0).discriminator().mismatched(), source->part(1).discriminator().expert()));
+    EXPECT_TRUE(torch::equal(source->part(1).discriminator().mismatched(), source->part(0).discriminator().expert()));
+    const IterationMetrics it = t.iterate();
+    EXPECT_FALSE(std::isnan(it.get("gail_mismatched_score_c0")));
+  }
+  {  // off by default
+    Trainer t(parse_train_config("collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, " + experts + "}\n", "ctx.yaml"), o);
+    EXPECT_EQ(dynamic_cast<AdversarialRewardSource*>(source_of(t))->discriminator().mismatched().size(0), 0);
+  }
+  const std::string single = error_of([&] {
+    Trainer bad(parse_train_config(gail_config(dir / "small.csv", 1, ", mismatched: 0.5"), "one.yaml"), oscillator_options());
+  });
+  EXPECT_NE(single.find("'rewards.mismatched' needs 'rewards.experts'"), std::string::npos) << single;
+}
+
 TEST(Record, KeepsEveryNthStepOfEachEpisodeFromThePolicy) {
   const auto dir = test::temp_dir("record");
   write_demonstrations(dir / "expert.csv", oscillator_expert(2));
