@@ -2,7 +2,7 @@
 # One ICCGAN policy, two gaits (seed 000's behaviour context over DeepMimic's walk and run,
 # configs/humanoid_walk_run_context_iccgan.yaml): train, then measure each context against its
 # clip and the other's (`mimic eval --context`), the switches between them (`--switch 0,1`) and
-# film a switch.
+# the discriminator's reward for each clip under each context (`mimic score`); film a switch.
 # Usage: scripts/humanoid_walk_run_context.sh [OUT_DIR]   (default runs/walk_run_context)
 #   INIT      a run or model without a context to start from (default models/humanoid_walk_iccgan,
 #             the 2·10⁷-sample walk; its inputs are widened by the one-hot); `none`: from scratch
@@ -58,6 +58,10 @@ for context in 0 1; do
 done
 "$mimic" eval "$run" --episodes 1 --trials "$trials" --switch 0,1 --json "$out/switch.json"
 "$mimic" render "$run" -o "$out/switch.mp4" --contexts 0,1 --context-seconds 5
+# The discriminator's reward for each clip under each context: whether it tells them apart.
+for clip in walk run; do
+  "$mimic" score "$run" --demos "runs/humanoid_${clip}_links_demos.csv" --json "$out/score_$clip.json"
+done
 python3 - "$out" <<'PY'
 import csv, json, sys
 out = sys.argv[1]
