@@ -75,6 +75,55 @@ std::string gail_config(const std::filesystem::path& expert, int iterations, con
          "  - {source: gail, expert: " + expert.string() + ", network: {hidden: [32, 32]}" + extra + "}\n";
 }
 
+// Two behaviours for the context tests, written to dir/small.csv and dir/large.csv: the
+// oscillator's orbit of radius 1 and the same orbit at radius 2 (force -x still orbits).
+struct TwoOrbits {
+  Demonstrations small, large;
+  std::string experts;  // "experts: [<small.csv>, <large.csv>]"
+};
+
+TwoOrbits two_orbits(const std::filesystem::path& dir, int episodes, const std::vector<ObservationSlice>& layout = {}) {
+  TwoOrbits o;
+  o.small = oscillator_expert(episodes);
+  o.small.layout = layout;
+  o.large = o.small;
+  o.large.obs *= 2, o.large.action *= 2, o.large.next_obs *= 2;
+  write_demonstrations(dir / "small.csv", o.small);
+  write_demonstrations(dir / "large.csv", o.large);
+  o.experts = "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]";
+  return o;
+}
+
+// A gail_config on `single` with its expert replaced by `experts` (and whatever follows them).
+std::string with_experts(std::string text, const std::filesystem::path& single, const std::string& experts) {
+  const std::string key = "expert: " + single.string();
+  return text.replace(text.find(key), key.size(), experts);
+}
+
+TrainOptions context_oscillator_options(int period = 0) {
+  TrainOptions o;
+  o.env_factory = [period] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, period); };
+  return o;
+}
+
+// Mean radius over the second half of 10 episodes started on the unit circle, context held.
+double held_radius(Trainer& t, int context) {
+  ContextEnv env(std::make_unique<test::OscillatorEnv>(), 2, 0);
+  std::mt19937_64 rng(3);
+  double sum = 0;
+  int n = 0;
+  for (int e = 0; e < 10; ++e) {
+    Eigen::VectorXd obs = env.reset(rng);
+    env.set_context(context);
+    obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
+    for (int k = 0; k < test::OscillatorEnv::kLength; ++k) {
+      obs = env.step(t.act(obs)).observation;
+      if (k >= test::OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
+    }
+  }
+  return sum / n;
+}
+
 }  // namespace
 
 TEST(Demonstrations, RoundTripAndFirstEpisodes) {
@@ -234,14 +283,8 @@ TEST(AdversarialConfig, AnExpertWithAnotherBodyIsMatchedByItsLayout) {
 
 TEST(AdversarialConfig, BehaviourContextsTakeOneExpertFileEach) {
   const auto dir = test::temp_dir("adversarial_contexts");
-  const Demonstrations small = oscillator_expert(2);
-  Demonstrations large = small;  // a second behaviour: the same orbit at twice the radius
-  large.obs *= 2, large.next_obs *= 2;
-  write_demonstrations(dir / "small.csv", small);
-  write_demonstrations(dir / "large.csv", large);
-  TrainOptions o;
-  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 10); };
-  const std::string experts = "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]";
+  const auto [small, large, experts] = two_orbits(dir, 2);
+  const TrainOptions o = context_oscillator_options(10);
   const std::string text = "collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, " + experts + "}\n";
   Trainer t(parse_train_config(text, "ctx.yaml"), o);
   auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
@@ -279,14 +322,8 @@ TEST(AdversarialConfig, BehaviourContextsTakeOneExpertFileEach) {
 // mismatched: each context's demonstrations, seen under another context, are the policy's.
 TEST(AdversarialConfig, MismatchedPairsEachFileWithTheOtherContexts) {
   const auto dir = test::temp_dir("adversarial_mismatched");
-  const Demonstrations small = oscillator_expert(2);
-  Demonstrations large = small;
-  large.obs *= 2, large.next_obs *= 2;
-  write_demonstrations(dir / "small.csv", small);
-  write_demonstrations(dir / "large.csv", large);
-  TrainOptions o;
-  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 10); };
-  const std::string experts = "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]";
+  const auto [small, large, experts] = two_orbits(dir, 2);
+  const TrainOptions o = context_oscillator_options(10);
   auto source_of = [&](Trainer& t) { return t.impl().rewards.at(0).second.get(); };
   {  // one discriminator: the files again, each with the other one-hot
     Trainer t(parse_train_config("collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, mismatched: 0.5, " + experts + "}\n", "ctx.yaml"), o);
@@ -376,39 +413,14 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
 // and the orbit of radius 2) from two expert files, the one-hot context choosing between them.
 TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
   const auto dir = test::temp_dir("gail_contexts");
-  const Demonstrations small = oscillator_expert(20);
-  Demonstrations large = small;  // the same dynamics at twice the radius: force -x still orbits
-  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
-  write_demonstrations(dir / "small.csv", small);
-  write_demonstrations(dir / "large.csv", large);
-  TrainOptions o;
-  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  const auto [small, large, experts] = two_orbits(dir, 20);
   const int iterations = 120;
-  std::string text = gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1");
-  text.replace(text.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
-               "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]");
-  Trainer t(parse_train_config(text, "ctx.yaml"), o);
-  // Mean radius over the second half of episodes started on the unit circle, context held.
-  auto radius_in = [&](int context) {
-    ContextEnv env(std::make_unique<test::OscillatorEnv>(), 2, 0);
-    std::mt19937_64 rng(3);
-    double sum = 0;
-    int n = 0;
-    for (int e = 0; e < 10; ++e) {
-      Eigen::VectorXd obs = env.reset(rng);
-      env.set_context(context);
-      obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
-      for (int k = 0; k < test::OscillatorEnv::kLength; ++k) {
-        const StepResult r = env.step(t.act(obs));
-        obs = r.observation;
-        if (k >= test::OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
-      }
-    }
-    return sum / n;
-  };
-  const double small_before = radius_in(0), large_before = radius_in(1);
+  const std::string text = with_experts(gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1"),
+                                        dir / "small.csv", experts);
+  Trainer t(parse_train_config(text, "ctx.yaml"), context_oscillator_options());
+  const double small_before = held_radius(t, 0), large_before = held_radius(t, 1);
   for (int i = 0; i < iterations; ++i) t.iterate();
-  const double small_after = radius_in(0), large_after = radius_in(1);
+  const double small_after = held_radius(t, 0), large_after = held_radius(t, 1);
   std::cout << "radius with context 0 (expert 1): " << small_before << " -> " << small_after << "; with context 1 (expert 2): " << large_before
             << " -> " << large_after << "\n";
   EXPECT_NEAR(small_after, 1.0, 0.3);
@@ -432,41 +444,19 @@ TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
 // from its context's file and samples alone, and each rates its own file above the other's.
 TEST(AdversarialImitation, ADiscriminatorPerContextTeachesBothBehaviours) {
   const auto dir = test::temp_dir("gail_per_context");
-  const Demonstrations small = oscillator_expert(20);
-  Demonstrations large = small;
-  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
-  write_demonstrations(dir / "small.csv", small);
-  write_demonstrations(dir / "large.csv", large);
-  TrainOptions o;
-  o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  const auto [small, large, experts] = two_orbits(dir, 20);
+  TrainOptions o = context_oscillator_options();
   o.run_dir = dir / "run";
   const int iterations = 120;
-  std::string text = gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1, per_context: true");
-  text.replace(text.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
-               "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]");
+  const std::string text = with_experts(
+      gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1, per_context: true"), dir / "small.csv", experts);
   Trainer t(parse_train_config(text, "ctx.yaml"), o);
   ASSERT_NE(dynamic_cast<PerContextRewardSource*>(t.impl().rewards[0].second.get()), nullptr);
   IterationMetrics last;
   for (int i = 0; i < iterations; ++i) last = t.iterate();
   EXPECT_FALSE(std::isnan(last.get("gail_policy_accuracy_c0")));  // each part's metrics, by context
   EXPECT_FALSE(std::isnan(last.get("gail_policy_accuracy_c1")));
-  auto radius_in = [&](int context) {
-    ContextEnv env(std::make_unique<test::OscillatorEnv>(), 2, 0);
-    std::mt19937_64 rng(3);
-    double sum = 0;
-    int n = 0;
-    for (int e = 0; e < 10; ++e) {
-      Eigen::VectorXd obs = env.reset(rng);
-      env.set_context(context);
-      obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
-      for (int k = 0; k < test::OscillatorEnv::kLength; ++k) {
-        obs = env.step(t.act(obs)).observation;
-        if (k >= test::OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
-      }
-    }
-    return sum / n;
-  };
-  const double small_after = radius_in(0), large_after = radius_in(1);
+  const double small_after = held_radius(t, 0), large_after = held_radius(t, 1);
   auto score = [&](const Demonstrations& d, int context) { return mean_of(t.discriminator_scores(d, context).at(0).second); };
   const double s00 = score(small, 0), s01 = score(small, 1), s10 = score(large, 0), s11 = score(large, 1);
   std::cout << "radius with context 0: " << small_after << ", with context 1: " << large_after << "; discriminator reward: small orbit "
@@ -494,21 +484,14 @@ TEST(AdversarialImitation, ADiscriminatorPerContextTeachesBothBehaviours) {
 // A single-behaviour run starts a per-context run: every part begins as its discriminator.
 TEST(AdversarialImitation, EveryDiscriminatorPerContextStartsAsTheSingleBehavioursOne) {
   const auto dir = test::temp_dir("gail_init_per_context");
-  Demonstrations small = oscillator_expert(4);
-  Demonstrations large = small;
-  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
-  write_demonstrations(dir / "small.csv", small);
-  write_demonstrations(dir / "large.csv", large);
+  const auto [small, large, experts] = two_orbits(dir, 4);
   const std::string text = gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, epochs: 2");
   TrainOptions o = oscillator_options();
   o.run_dir = dir / "source";
   Trainer source(parse_train_config(text, "osc.yaml"), o);
   source.run();
-  std::string two = text;
-  two.replace(two.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
-              "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "], per_context: true");
-  TrainOptions c = oscillator_options();
-  c.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  const std::string two = with_experts(text, dir / "small.csv", experts + ", per_context: true");
+  TrainOptions c = context_oscillator_options();
   c.run_dir = dir / "context";
   c.init_from = dir / "source";
   Trainer t(parse_train_config(two, "osc_context.yaml"), c);
@@ -699,12 +682,8 @@ TEST(AdversarialImitation, ANewRunStartsFromAnotherRunsWeightsUnderAChangedConfi
 
 TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextActingAsItDid) {
   const auto dir = test::temp_dir("gail_init_context");
-  Demonstrations small = oscillator_expert(4);
-  small.layout = {{"position", 0, 1}, {"velocity", 1, 1}};  // as mimic record names them
-  Demonstrations large = small;
-  large.obs *= 2, large.action *= 2, large.next_obs *= 2;
-  write_demonstrations(dir / "small.csv", small);
-  write_demonstrations(dir / "large.csv", large);
+  // Layouts as mimic record names them.
+  const auto [small, large, experts] = two_orbits(dir, 4, {{"position", 0, 1}, {"velocity", 1, 1}});
   const std::string text = gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2");
   TrainOptions o = oscillator_options();
   o.run_dir = dir / "source";
@@ -713,11 +692,8 @@ TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextA
   auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*source.impl().rewards[0].second).discriminator();
 
   // The same set-up over two behaviours: a one-hot after the observation, one expert file each.
-  std::string two = text;
-  two.replace(two.find("expert: "), std::string("expert: ").size() + (dir / "small.csv").string().size(),
-              "experts: [" + (dir / "small.csv").string() + ", " + (dir / "large.csv").string() + "]");
-  TrainOptions c = oscillator_options();
-  c.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 0); };
+  const std::string two = with_experts(text, dir / "small.csv", experts);
+  TrainOptions c = context_oscillator_options();
   c.run_dir = dir / "context";
   c.init_from = dir / "source";
   Trainer t(parse_train_config(two, "osc_context.yaml"), c);
