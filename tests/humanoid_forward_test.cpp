@@ -53,6 +53,16 @@ InitState flying(const CharacterModel& ch) {
   return s;
 }
 
+// The error making an env factory from `env_yaml` gives, or "no error".
+std::string factory_error(const YamlReader& r, const std::string& env_yaml) {
+  try {
+    (void)make_env_factory(r.parse(env_yaml, ""), r);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 }  // namespace
 
 TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
@@ -389,14 +399,7 @@ TEST(HumanoidForward, ContextStartsComeFromTheContextsClip) {
   EXPECT_THROW(ContextEnv(std::make_unique<CharacterEnv>(ch, CharacterEnvConfig{}), 2, 0, true), Error);
 
   const YamlReader r("ctx.yaml");
-  auto error = [&](const std::string& env_yaml) {
-    try {
-      (void)make_env_factory(r.parse(env_yaml, ""), r);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error = [&](const std::string& env_yaml) { return factory_error(r, env_yaml); };
   EXPECT_EQ(error("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt], "
                   "context: {count: 2, period: 150, starts: by_context}}"),
             "no error");
@@ -417,14 +420,7 @@ TEST(HumanoidForward, TheConfigTakesOneClipOrAList) {
   };
   EXPECT_EQ(observation_size("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt]}"),
             observation_size("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt}"));
-  auto error = [&](const std::string& env_yaml) {
-    try {
-      (void)make_env_factory(r.parse(env_yaml, ""), r);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error = [&](const std::string& env_yaml) { return factory_error(r, env_yaml); };
   EXPECT_NE(error("{name: humanoid_forward, clip: []}").find("'env.clip': an empty list"), std::string::npos);
   // Every clip of the list is loaded: a missing second one is named.
   EXPECT_NE(error("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, /nonexistent/run.txt]}").find("/nonexistent/run.txt not found"),
