@@ -177,7 +177,6 @@ file(COPY ${OUT}/demos.csv DESTINATION ${OUT}/gail_run)
 run_ok(eval ${OUT}/gail_run --episodes 1 --latency --json ${OUT}/gail_latency.json)
 file(READ ${OUT}/gail_latency.json gail_latency)
 expect_in("${gail_latency}" "\"discriminators\": [{\"source\": \"gail\", \"us\": ")
-# An exported model (no optimiser moments, no replay) acts like its run and is not resumed.
 # The discriminator's rewards for a demonstrations file (no behaviour context in this run).
 run_ok(score ${OUT}/gail_run --demos ${OUT}/demos.csv --json ${OUT}/gail_score.json)
 expect_in("${LAST_OUT}" "transitions scored by ${OUT}/gail_run")
@@ -185,6 +184,7 @@ expect_in("${LAST_OUT}" "  gail                   reward ")
 file(READ ${OUT}/gail_score.json gail_score)
 expect_in("${gail_score}" "\"scores\": [{\"source\": \"gail\", \"context\": null, \"mean\": ")
 run_fails("gail: its discriminator has no behaviour context" score ${OUT}/gail_run --demos ${OUT}/demos.csv --context 0)
+# An exported model (no optimiser moments, no replay) acts like its run and is not resumed.
 run_ok(export ${OUT}/gail_run -o ${OUT}/gail_model)
 expect_in("${LAST_OUT}" "wrote ${OUT}/gail_model/checkpoint.pt (")
 run_ok(eval ${OUT}/gail_model --episodes 1)
