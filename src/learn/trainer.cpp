@@ -67,7 +67,8 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
     const std::unique_ptr<Env> probe = factory();
     context.frame_size = probe->observation_size();
     context.action_size = probe->action_size();
-    context.layout = probe->observation_layout();
+    layout = probe->observation_layout();
+    context.layout = layout;
   }
   for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, context));
   if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(iteration + 1, n); });
@@ -359,7 +360,7 @@ Demonstrations Trainer::record(int episodes, int every, bool deterministic, std:
     }
   }
   Demonstrations d;
-  d.layout = impl_->factory()->observation_layout();
+  d.layout = impl_->layout;
   const auto n = static_cast<Eigen::Index>(kept.size());
   d.obs.resize(n, frame);
   d.next_obs.resize(n, frame);
@@ -377,7 +378,7 @@ Demonstrations Trainer::record(int episodes, int every, bool deterministic, std:
 std::vector<std::pair<std::string, std::vector<double>>> Trainer::discriminator_scores(const Demonstrations& d, int context) {
   // The run's own observation without its context: what record-clip and record write.
   int own = impl_->collector->frame_size();
-  for (const ObservationSlice& s : impl_->factory()->observation_layout())
+  for (const ObservationSlice& s : impl_->layout)
     if (s.name == "context") own -= s.size;
   if (d.obs.cols() != own)
     throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values, this run's environment " +

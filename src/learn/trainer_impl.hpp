@@ -16,6 +16,7 @@ struct Trainer::Impl {
   TrainConfig cfg;
   TrainOptions opts;
   EnvFactory factory;
+  std::vector<ObservationSlice> layout;  // the environment's observation parts, read once from a probe
   std::unique_ptr<Collector> collector;
   std::unique_ptr<PpoLearner> learner;
   RunningNormalizer obs_norm;
