@@ -214,6 +214,11 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${tracking_json}" "\"imitation\": {\"clip\": \"humanoid3d_walk\", \"trials\": 3")
   expect_in("${tracking_json}" "\"normalised_return\": 0.")
   expect_in("${tracking_json}" "\"progress\": ")  # the walk moves: its progress is measured
+  # Each trial's error, so that a few far-off trials can be told from a uniformly poor imitation.
+  if(NOT tracking_json MATCHES "\"trial_errors\": \\[[0-9.e-]+, [0-9.e-]+, [0-9.e-]+\\]")
+    message(FATAL_ERROR "tracking.json lacks the three trials' errors:\n${tracking_json}")
+  endif()
+  expect_in("${LAST_OUT}" "per trial: median ")
   run_ok(eval ${OUT}/tracking_run --episodes 1 --trials 1 --robustness 0,2,8 --robustness-trials 1 --robustness-seconds 0.5 --latency --json ${OUT}/robust.json)
   file(READ ${OUT}/robust.json robust_json)
   expect_in("${robust_json}" "\"robustness\": [{\"mass\": 0, \"frames_mean\": ")

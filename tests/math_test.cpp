@@ -70,3 +70,10 @@ TEST(Statistics, MeanAndPopulationStdOfASample) {
   EXPECT_TRUE(std::isnan(mimic::mean_of({})));
   EXPECT_TRUE(std::isnan(mimic::std_of({})));
 }
+
+TEST(Statistics, MedianIsTheMiddleValueOrTheMeanOfTheTwoMiddleOnes) {
+  EXPECT_DOUBLE_EQ(mimic::median_of({5, 1, 100}), 5.0);    // unsorted, one far-off value
+  EXPECT_DOUBLE_EQ(mimic::median_of({4, 1, 3, 2}), 2.5);   // (2 + 3) / 2
+  EXPECT_DOUBLE_EQ(mimic::median_of({7}), 7.0);
+  EXPECT_TRUE(std::isnan(mimic::median_of({})));
+}

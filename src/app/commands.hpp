@@ -26,9 +26,10 @@ std::string clip_summary(const Clip& clip);
 CharacterModel character_for(const Clip& clip, const std::filesystem::path& input, const LoadOptions& load);
 
 // JSON pieces of the commands' --json files: a quoted, escaped string; a number, null when not
-// finite (JSON has no NaN).
+// finite (JSON has no NaN); an array of such numbers.
 std::string json_string(const std::string& s);
 std::string json_number(double v);
+std::string json_numbers(const std::vector<double>& v);
 
 // Writes a clip to .mclip, DeepMimic .txt or a .svg picture, by the extension of `out`.
 void write_motion(const Clip& clip, const std::filesystem::path& out);

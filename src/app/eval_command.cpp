@@ -13,8 +13,8 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
-#include "core/statistics.hpp"
 #include "core/file_io.hpp"
+#include "core/statistics.hpp"
 #include "env/character_env.hpp"
 #include "env/context_env.hpp"
 #include "env/env_factory.hpp"
@@ -35,6 +35,12 @@ std::string json_string(const std::string& s) {
 }
 
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
+
+std::string json_numbers(const std::vector<double>& v) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + json_number(v[i]);
+  return out + "]";
+}
 
 namespace {
 
@@ -216,7 +222,9 @@ void evaluate(const EvalArgs& args) {
     const std::string name = clip ? clip->name : character->reference()->name;
     spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{})",
                  r.trial_errors.size(), name, r.cycle_seconds, contexts ? fmt::format(", context {} held", args.context) : "");
-    spdlog::info("  error           {:.3f} +- {:.3f} m (mean over links of the world position error)", r.error_mean(), r.error_std());
+    spdlog::info("  error           {:.3f} +- {:.3f} m (mean over links of the world position error); per trial: median {:.3f}, "
+                 "largest {:.3f} m", r.error_mean(), r.error_std(), median_of(r.trial_errors),
+                 *std::max_element(r.trial_errors.begin(), r.trial_errors.end()));
     spdlog::info("  falls           {} of {} full episodes; down (a fall, or the root below half the reference's for {} frames) {}", r.falls,
                  r.trial_errors.size(), kLyingFrames, r.down);
     if (!r.trial_returns.empty()) spdlog::info("  normalised return {:.3f} (full episodes; 1 = perfect tracking)", r.normalised_return_mean());
@@ -224,9 +232,11 @@ void evaluate(const EvalArgs& args) {
       spdlog::info("  progress        {:.3f} of the reference's ground covered (full episodes, {} trials; 1 = kept pace)", r.progress_mean(),
                    r.trial_progress.size());
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
-                        "\"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}{}}}",
+                        "\"trial_errors\": {}, \"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}, "
+                        "\"trial_progress\": {}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
-                        json_number(r.error_std()), r.falls, r.down, json_number(r.normalised_return_mean()), json_number(r.progress_mean()),
+                        json_number(r.error_std()), json_numbers(r.trial_errors), r.falls, r.down,
+                        json_number(r.normalised_return_mean()), json_number(r.progress_mean()), json_numbers(r.trial_progress),
                         contexts ? fmt::format(", \"context\": {}", args.context) : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
