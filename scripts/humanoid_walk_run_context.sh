@@ -13,6 +13,9 @@
 #             discriminator; default 0: one discriminator with the one-hot among its inputs
 #   MISMATCHED   other contexts' clip samples per policy sample that the discriminator learns to
 #             call fake (rewards.0.mismatched; default 0: none)
+#   TEACHERS  instead of training: `mimic distill` from these runs or models, the walk's then the
+#             run's (e.g. "models/humanoid_walk_iccgan models/humanoid_run_iccgan_from_walk"), with
+#             ROUNDS rounds (default 100) of 16 episodes; LOG_STD then sets the student's noise
 #   ITERATIONS (default: the config's 5,000 of 4,096 samples), THREADS (default 1), TRIALS (20)
 # Resumable: a run with a checkpoint is resumed (stop it with Ctrl-C at any time); evaluations are
 # redone on each call, since the run may have moved on. Needs ../shared/data.
@@ -39,7 +42,14 @@ done
 run="$out/run"
 iterations=()
 [ -n "${ITERATIONS:-}" ] && iterations=(--iterations "$ITERATIONS")
-if [ -f "$run/checkpoint.pt" ]; then
+if [ -n "${TEACHERS:-}" ]; then
+  teachers=()
+  for t in $TEACHERS; do teachers+=(--teacher "$t"); done
+  args=("$config" -o "$run" "${teachers[@]}" --rounds "${ROUNDS:-100}" --threads "$threads")
+  [ -f "$run/checkpoint.pt" ] && args+=(--resume)
+  [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+  "$mimic" distill "${args[@]}" >> "$out/train.log" 2>&1
+elif [ -f "$run/checkpoint.pt" ]; then
   "$mimic" train --resume -o "$run" --threads "$threads" "${iterations[@]}" >> "$out/train.log" 2>&1
 else
   args=("$config" -o "$run" --threads "$threads" "${iterations[@]}")
@@ -58,14 +68,19 @@ for context in 0 1; do
 done
 "$mimic" eval "$run" --episodes 1 --trials "$trials" --switch 0,1 --json "$out/switch.json"
 "$mimic" render "$run" -o "$out/switch.mp4" --contexts 0,1 --context-seconds 5
-# The discriminator's reward for each clip under each context: whether it tells them apart.
-for clip in walk run; do
-  "$mimic" score "$run" --demos "runs/humanoid_${clip}_links_demos.csv" --json "$out/score_$clip.json"
-done
+# The discriminator's reward for each clip under each context: whether it tells them apart
+# (a distilled student has none).
+if [ -z "${TEACHERS:-}" ]; then
+  for clip in walk run; do
+    "$mimic" score "$run" --demos "runs/humanoid_${clip}_links_demos.csv" --json "$out/score_$clip.json"
+  done
+fi
 python3 - "$out" <<'PY'
 import csv, json, sys
 out = sys.argv[1]
-m = list(csv.DictReader(open(f"{out}/run/metrics.csv")))[-1]
+import os
+log = f"{out}/run/metrics.csv" if os.path.exists(f"{out}/run/metrics.csv") else f"{out}/run/distill.csv"
+m = list(csv.DictReader(open(log)))[-1]
 print(f"{float(m['samples']) / 1e6:.2f} M samples in this run, {float(m['wall_s']):.0f} s")
 print("| context held | against | imitation error | down | progress |")
 print("| --- | --- | --- | --- | --- |")

@@ -12,6 +12,7 @@ void add_demo_command(CLI::App& app);
 void add_render_commands(CLI::App& app);
 void add_train_commands(CLI::App& app);
 void add_imitation_commands(CLI::App& app);
+void add_distill_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_report_commands(CLI::App& app);
 

@@ -341,13 +341,15 @@ EpisodeStats Trainer::run_episodes(int episodes, std::uint64_t seed, bool determ
   return stats;
 }
 
-Demonstrations Trainer::record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns) {
+Demonstrations Trainer::record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns,
+                               EpisodeStats* episode_stats) {
   if (episodes < 1 || every < 1) throw Error("record: episodes and every must be >= 1");
   const int frame = impl_->collector->input_size() / impl_->cfg.policy.net.history;
   EpisodeStats stats;
   std::mt19937_64 rng(seed);  // action noise, then the sub-sampling offsets
   const Rollout r = impl_->side_episodes(episodes, seed, rng, deterministic, stats);
   if (returns) *returns = stats.returns;
+  if (episode_stats) *episode_stats = stats;
   std::vector<std::pair<int, int>> kept;  // (sample, episode)
   int episode = 0;
   std::uniform_int_distribution<int> offset_of(0, every - 1);

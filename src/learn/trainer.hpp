@@ -74,8 +74,10 @@ class Trainer {
   double clone_behaviour(const Demonstrations& d, int epochs, double lr, int batch, std::uint64_t seed);
   // Expert demonstrations: `episodes` episodes of the policy (sampled actions unless
   // `deterministic`), keeping every `every`-th step of each from a random offset (seed 002:
-  // sub-sampled every 20 steps). `returns` receives each episode's environment return.
-  Demonstrations record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns = nullptr);
+  // sub-sampled every 20 steps). `returns` receives each episode's environment return,
+  // `episode_stats` returns, lengths and falls.
+  Demonstrations record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns = nullptr,
+                        EpisodeStats* episode_stats = nullptr);
 
   // The scores of the run's adversarial reward sources (gail, iccgan) on demonstrations `d`, by
   // source name: each transition's reward under behaviour context `context` (-1 in a run without

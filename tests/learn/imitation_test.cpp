@@ -106,22 +106,9 @@ TrainOptions context_oscillator_options(int period = 0) {
   return o;
 }
 
-// Mean radius over the second half of 10 episodes started on the unit circle, context held.
+// The toy's held_orbit_radius, acting with the trainer's mean action.
 double held_radius(Trainer& t, int context) {
-  ContextEnv env(std::make_unique<test::OscillatorEnv>(), 2, 0);
-  std::mt19937_64 rng(3);
-  double sum = 0;
-  int n = 0;
-  for (int e = 0; e < 10; ++e) {
-    Eigen::VectorXd obs = env.reset(rng);
-    env.set_context(context);
-    obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
-    for (int k = 0; k < test::OscillatorEnv::kLength; ++k) {
-      obs = env.step(t.act(obs)).observation;
-      if (k >= test::OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
-    }
-  }
-  return sum / n;
+  return test::held_orbit_radius([&t](const Eigen::VectorXd& obs) { return t.act(obs); }, context);
 }
 
 }  // namespace

@@ -4,7 +4,10 @@
 // steps, and can be made to emit a NaN reward.
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
 
+#include "env/context_env.hpp"
 #include "env/env.hpp"
 
 namespace mimic::test {
@@ -67,5 +70,24 @@ class OscillatorEnv : public Env {
   double x_ = 0, v_ = 1;
   int t_ = 0;
 };
+
+// Mean radius over the second half of 10 oscillator episodes started on the unit circle, under
+// behaviour context `context` of two held throughout, acting by `act` on (x, v, one-hot).
+inline double held_orbit_radius(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& act, int context) {
+  ContextEnv env(std::make_unique<OscillatorEnv>(), 2, 0);
+  std::mt19937_64 rng(3);
+  double sum = 0;
+  int n = 0;
+  for (int e = 0; e < 10; ++e) {
+    Eigen::VectorXd obs = env.reset(rng);
+    env.set_context(context);
+    obs.tail(2) = Eigen::Vector2d(context == 0, context == 1);
+    for (int k = 0; k < OscillatorEnv::kLength; ++k) {
+      obs = env.step(act(obs)).observation;
+      if (k >= OscillatorEnv::kLength / 2) sum += std::hypot(obs[0], obs[1]), ++n;
+    }
+  }
+  return sum / n;
+}
 
 }  // namespace mimic::test
