@@ -45,9 +45,13 @@ iterations=()
 if [ -n "${TEACHERS:-}" ]; then
   teachers=()
   for t in $TEACHERS; do teachers+=(--teacher "$t"); done
-  args=("$config" -o "$run" "${teachers[@]}" --rounds "${ROUNDS:-100}" --threads "$threads")
-  [ -f "$run/checkpoint.pt" ] && args+=(--resume)
-  [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+  args=(-o "$run" "${teachers[@]}" --rounds "${ROUNDS:-100}" --threads "$threads")
+  if [ -f "$run/checkpoint.pt" ]; then
+    args+=(--resume)
+  else
+    args+=("$config")
+    [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+  fi
   "$mimic" distill "${args[@]}" >> "$out/train.log" 2>&1
 elif [ -f "$run/checkpoint.pt" ]; then
   "$mimic" train --resume -o "$run" --threads "$threads" "${iterations[@]}" >> "$out/train.log" 2>&1

@@ -72,8 +72,9 @@ void add_distill_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
       "distill", "one policy from several: the student acts, teacher k labels its states under behaviour context k (DAgger)");
-  cmd->add_option("config", args->config, "the student's training config (.yaml): environment with env.context (one context per teacher) and policy")
-      ->required()
+  cmd->add_option("config", args->config,
+                  "the student's training config (.yaml): environment with env.context (one context per teacher) and policy; "
+                  "with --resume, OUT/config.yaml")
       ->check(CLI::ExistingFile);
   cmd->add_option("--teacher", args->teachers, "a trained run or model per context, in context order (repeat it)")
       ->required()
@@ -94,12 +95,17 @@ void add_distill_command(CLI::App& app) {
     if (!args->resume && std::filesystem::exists(checkpoint))
       throw Error(args->out.string() + " already holds a run (checkpoint.pt): pass --resume to go on with it, or choose another directory");
     if (args->resume && !std::filesystem::exists(checkpoint)) throw Error(checkpoint.string() + ": no checkpoint to resume from");
+    // A resumed student goes on under the config it was started with (its noise, its networks).
+    if (args->resume && (!args->config.empty() || !args->settings.empty()))
+      throw Error("distill --resume goes on with " + (args->out / "config.yaml").string() + ": give neither a config nor --set");
+    if (!args->resume && args->config.empty()) throw Error("distill: the student's config is needed (or --resume -o OUT)");
     // The student learns from its teachers, not from rewards: its run must load without the
     // config's expert files, and a later `mimic train --init-from` brings the rewards it wants.
     std::vector<std::string> settings = args->settings;
-    settings.push_back("rewards=[{source: env}]");
-    const std::string source = args->config.string();
-    const std::string text = override_config(read_text_file(args->config), source, settings);
+    if (!args->resume) settings.push_back("rewards=[{source: env}]");
+    const std::filesystem::path config = args->resume ? args->out / "config.yaml" : args->config;
+    const std::string source = config.string();
+    const std::string text = override_config(read_text_file(config), source, settings);
     TrainConfig cfg = parse_train_config(text, source);
     if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     if (cfg.policy.net.history != 1) throw Error(source + ": distillation needs a student that sees one frame (policy.history: 1)");
