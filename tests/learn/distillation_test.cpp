@@ -9,8 +9,10 @@
 #include "learn/distillation.hpp"
 #include "learn/train_config.hpp"
 #include "toy_env.hpp"
+#include "../error_message.hpp"
 
 using namespace mimic;
+using mimic::test::error_of;
 
 namespace {
 
@@ -22,15 +24,6 @@ PolicyFunction orbit_teacher(int k) {
     const double radius = std::hypot(s[0], s[1]);
     return Eigen::VectorXd::Constant(1, -s[0] + 2.0 * s[1] * (k + 1 - radius));
   };
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace

@@ -19,10 +19,12 @@
 #include "learn/per_context_reward.hpp"
 #include "learn/trainer_impl.hpp"
 #include "toy_env.hpp"
+#include "../error_message.hpp"
 #include "../humanoid_data.hpp"
 #include "../test_data.hpp"
 
 using namespace mimic;
+using mimic::test::error_of;
 
 namespace {
 
@@ -48,15 +50,6 @@ Demonstrations oscillator_expert(int episodes) {
 }
 
 void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TrainOptions oscillator_options() {
   TrainOptions o;
