@@ -96,7 +96,9 @@ for context, behaviour in enumerate(("walk", "run")):
               f"{i['down']} of {i['trials']} | {progress} |")
 print("| switch | fell before / after | speed before → after (m/s) |")
 print("| --- | --- | --- |")
+def speed(mean, sd):  # null: every trial had fallen by then
+    return "—" if mean is None else f"{mean:.2f} ± {sd:.2f}"
 for s in json.load(open(f"{out}/switch.json"))["switches"]:
     print(f"| {s['from']} → {s['to']} | {s['fell_before']} / {s['fell_after']} | "
-          f"{s['speed_before_mean']:.2f} ± {s['speed_before_std']:.2f} → {s['speed_after_mean']:.2f} ± {s['speed_after_std']:.2f} |")
+          f"{speed(s['speed_before_mean'], s['speed_before_std'])} → {speed(s['speed_after_mean'], s['speed_after_std'])} |")
 PY
