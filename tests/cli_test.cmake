@@ -149,6 +149,8 @@ run_fails("already holds a run (checkpoint.pt): pass --resume" distill ${OUT}/wa
 run_ok(distill --teacher ${OUT}/walker_run --teacher ${OUT}/walker_run -o ${OUT}/distilled --resume --rounds 3 --episodes 2)
 expect_in("${LAST_OUT}" "(rounds 3 to 3, ")
 run_fails("distill --resume goes on with ${OUT}/distilled/config.yaml: give neither a config nor --set" distill ${OUT}/walker_contexts.yaml --teacher ${OUT}/walker_run --teacher ${OUT}/walker_run -o ${OUT}/distilled --resume --rounds 4)
+file(APPEND ${OUT}/distilled/distill.csv "4,oops\n")
+run_fails("${OUT}/distilled/distill.csv: line 5 is not a row of 8 numbers" distill --teacher ${OUT}/walker_run --teacher ${OUT}/walker_run -o ${OUT}/distilled --resume --rounds 5)
 run_fails("1 teachers for ${OUT}/walker_contexts.yaml's 2 behaviour contexts: give one --teacher per context" distill ${OUT}/walker_contexts.yaml --teacher ${OUT}/walker_run -o ${OUT}/distilled_one)
 run_fails("${OUT}/distilled: the teacher takes " distill ${OUT}/walker_contexts.yaml --teacher ${OUT}/distilled --teacher ${OUT}/walker_run -o ${OUT}/distilled_wide)
 run_fails("--resume excludes --init-from" train ${OUT}/walker.yaml -o ${OUT}/walker_fine --resume --init-from ${OUT}/walker_run)
