@@ -14,6 +14,7 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "env/context_env.hpp"
 #include "learn/distillation.hpp"
 #include "learn/trainer.hpp"
 
@@ -118,10 +119,8 @@ void add_distill_command(CLI::App& app) {
       progress = read_progress({});
     }
     // Teacher k sees the student's frame without the one-hot.
-    const std::unique_ptr<Env> env = student.make_env();
-    int context_width = 0;
-    for (const ObservationSlice& s : env->observation_layout())
-      if (s.name == "context") context_width = s.size;
+    const ObservationSlice* context = context_slice(student.make_env()->observation_layout());
+    const int context_width = context ? context->size : 0;
     if (static_cast<int>(args->teachers.size()) != std::max(context_width, 1))
       throw Error(std::to_string(args->teachers.size()) + " teachers for " + source + "'s " +
                   (context_width ? std::to_string(context_width) + " behaviour contexts: give one --teacher per context, in context order"

@@ -19,6 +19,12 @@ ContextEnv::ContextEnv(std::unique_ptr<Env> inner, int contexts, int period, boo
   }
 }
 
+const ObservationSlice* context_slice(const std::vector<ObservationSlice>& layout) {
+  for (const ObservationSlice& s : layout)
+    if (s.name == "context") return &s;
+  return nullptr;
+}
+
 std::vector<ObservationSlice> ContextEnv::observation_layout() const {
   std::vector<ObservationSlice> layout = inner_->observation_layout();
   layout.push_back({"context", inner_->observation_size(), contexts_});

@@ -16,6 +16,10 @@ class CharacterEnv;
 
 namespace mimic {
 
+// The part of an observation layout that holds the behaviour context's one-hot (ContextEnv's
+// "context"); null when the layout has none.
+const ObservationSlice* context_slice(const std::vector<ObservationSlice>& layout);
+
 class ContextEnv : public Env {
  public:
   // `contexts` >= 2; `period` steps between draws (0: only at reset). starts_by_context needs a

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "env/context_env.hpp"
 #include "learn/input_widening.hpp"
 #include "learn/per_context_reward.hpp"
 
@@ -252,8 +253,8 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
     return std::make_unique<AdversarialRewardSource>(kind, std::move(f), expert, d, context.seed);
   }
   // Behaviour contexts: the environment's context slice follows every state's chosen entries.
-  const auto ctx = std::find_if(context.layout.begin(), context.layout.end(), [](const ObservationSlice& p) { return p.name == "context"; });
-  if (ctx == context.layout.end() || ctx->size != static_cast<int>(per_context.size()))
+  const ObservationSlice* ctx = context_slice(context.layout);
+  if (!ctx || ctx->size != static_cast<int>(per_context.size()))
     throw Error(context.config_source + ": " + s.name("experts") + " names " + std::to_string(per_context.size()) +
                 " files: the environment needs env.context with count " + std::to_string(per_context.size()));
   f.contexts = ctx->size;

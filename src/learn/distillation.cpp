@@ -1,17 +1,17 @@
 #include "learn/distillation.hpp"
 
 #include <algorithm>
-#include <numeric>
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
+#include "env/context_env.hpp"
 
 namespace mimic {
 
 Demonstrations label_by_teachers(const Demonstrations& states, const std::vector<ObservationSlice>& layout,
                                  const std::vector<PolicyFunction>& teachers) {
-  const auto ctx = std::find_if(layout.begin(), layout.end(), [](const ObservationSlice& p) { return p.name == "context"; });
-  const int contexts = ctx == layout.end() ? 0 : ctx->size;
+  const ObservationSlice* ctx = context_slice(layout);
+  const int contexts = ctx ? ctx->size : 0;
   if (static_cast<int>(teachers.size()) != std::max(contexts, 1))
     throw Error("distillation: " + std::to_string(teachers.size()) + " teachers for a student " +
                 (contexts ? "with " + std::to_string(contexts) + " behaviour contexts (one teacher per context)"
@@ -44,7 +44,7 @@ Demonstrations label_by_teachers(const Demonstrations& states, const std::vector
 
 namespace {
 
-// The newest `keep` rows (obs and action: all that cloning reads).
+// Only the newest `keep` rows (every per-row member, so that the set stays consistent).
 void keep_newest(Demonstrations& d, int keep) {
   const Eigen::Index extra = d.obs.rows() - keep;
   if (extra <= 0) return;

@@ -10,6 +10,7 @@
 #include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
+#include "env/context_env.hpp"
 #include "learn/advantage.hpp"
 #include "learn/adversarial_reward.hpp"
 #include "learn/per_context_reward.hpp"
@@ -379,9 +380,8 @@ Demonstrations Trainer::record(int episodes, int every, bool deterministic, std:
 
 std::vector<std::pair<std::string, std::vector<double>>> Trainer::discriminator_scores(const Demonstrations& d, int context) {
   // The run's own observation without its context: what record-clip and record write.
-  int own = impl_->collector->frame_size();
-  for (const ObservationSlice& s : impl_->layout)
-    if (s.name == "context") own -= s.size;
+  const ObservationSlice* one_hot = context_slice(impl_->layout);
+  const int own = impl_->collector->frame_size() - (one_hot ? one_hot->size : 0);
   if (d.obs.cols() != own)
     throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values, this run's environment " +
                 std::to_string(own) + " (without its context)");
