@@ -119,7 +119,7 @@ void add_distill_command(CLI::App& app) {
       progress = read_progress({});
     }
     // Teacher k sees the student's frame without the one-hot.
-    const ObservationSlice* context = context_slice(student.make_env()->observation_layout());
+    const std::optional<ObservationSlice> context = context_slice(student.make_env()->observation_layout());
     const int context_width = context ? context->size : 0;
     if (static_cast<int>(args->teachers.size()) != std::max(context_width, 1))
       throw Error(std::to_string(args->teachers.size()) + " teachers for " + source + "'s " +

@@ -19,10 +19,10 @@ ContextEnv::ContextEnv(std::unique_ptr<Env> inner, int contexts, int period, boo
   }
 }
 
-const ObservationSlice* context_slice(const std::vector<ObservationSlice>& layout) {
+std::optional<ObservationSlice> context_slice(const std::vector<ObservationSlice>& layout) {
   for (const ObservationSlice& s : layout)
-    if (s.name == "context") return &s;
-  return nullptr;
+    if (s.name == "context") return s;
+  return std::nullopt;
 }
 
 std::vector<ObservationSlice> ContextEnv::observation_layout() const {

@@ -7,6 +7,7 @@
 // With starts_by_context, an episode also starts from its context's own clip (the inner
 // character env's start group of that index), so the context matches the motion it starts in.
 #include <memory>
+#include <optional>
 
 #include "env/env.hpp"
 
@@ -17,8 +18,8 @@ class CharacterEnv;
 namespace mimic {
 
 // The part of an observation layout that holds the behaviour context's one-hot (ContextEnv's
-// "context"); null when the layout has none.
-const ObservationSlice* context_slice(const std::vector<ObservationSlice>& layout);
+// "context"), by value so that it outlives a temporary layout; empty when the layout has none.
+std::optional<ObservationSlice> context_slice(const std::vector<ObservationSlice>& layout);
 
 class ContextEnv : public Env {
  public:

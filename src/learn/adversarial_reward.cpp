@@ -253,7 +253,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
     return std::make_unique<AdversarialRewardSource>(kind, std::move(f), expert, d, context.seed);
   }
   // Behaviour contexts: the environment's context slice follows every state's chosen entries.
-  const ObservationSlice* ctx = context_slice(context.layout);
+  const std::optional<ObservationSlice> ctx = context_slice(context.layout);
   if (!ctx || ctx->size != static_cast<int>(per_context.size()))
     throw Error(context.config_source + ": " + s.name("experts") + " names " + std::to_string(per_context.size()) +
                 " files: the environment needs env.context with count " + std::to_string(per_context.size()));

@@ -10,7 +10,7 @@ namespace mimic {
 
 Demonstrations label_by_teachers(const Demonstrations& states, const std::vector<ObservationSlice>& layout,
                                  const std::vector<PolicyFunction>& teachers) {
-  const ObservationSlice* ctx = context_slice(layout);
+  const std::optional<ObservationSlice> ctx = context_slice(layout);
   const int contexts = ctx ? ctx->size : 0;
   if (static_cast<int>(teachers.size()) != std::max(contexts, 1))
     throw Error("distillation: " + std::to_string(teachers.size()) + " teachers for a student " +

@@ -380,7 +380,7 @@ Demonstrations Trainer::record(int episodes, int every, bool deterministic, std:
 
 std::vector<std::pair<std::string, std::vector<double>>> Trainer::discriminator_scores(const Demonstrations& d, int context) {
   // The run's own observation without its context: what record-clip and record write.
-  const ObservationSlice* one_hot = context_slice(impl_->layout);
+  const std::optional<ObservationSlice> one_hot = context_slice(impl_->layout);
   const int own = impl_->collector->frame_size() - (one_hot ? one_hot->size : 0);
   if (d.obs.cols() != own)
     throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values, this run's environment " +
