@@ -11,6 +11,10 @@
 #             episode starts from its context's clip: env.context.starts)
 #   PER_CONTEXT  1: one discriminator per context (rewards.0.per_context), each from the source's
 #             discriminator; default 0: one discriminator with the one-hot among its inputs
+#   DISCRIMINATORS  with PER_CONTEXT=1: each context's discriminator from its own run or model on
+#             that behaviour alone, the walk's then the run's (mimic train --init-discriminators-from;
+#             e.g. "models/humanoid_walk_iccgan models/humanoid_run_iccgan_from_walk", with INIT a
+#             distilled student such as models/humanoid_walk_run_distilled)
 #   MISMATCHED   other contexts' clip samples per policy sample that the discriminator learns to
 #             call fake (rewards.0.mismatched; default 0: none)
 #   TEACHERS  instead of training: `mimic distill` from these runs or models, the walk's then the
@@ -62,6 +66,10 @@ else
   [ "$starts" != any ] && args+=(--set "env.context.starts=$starts")
   [ "$per_context" = 1 ] && args+=(--set rewards.0.per_context=true)
   [ "$mismatched" != 0 ] && args+=(--set "rewards.0.mismatched=$mismatched")
+  if [ -n "${DISCRIMINATORS:-}" ]; then
+    [ "$per_context" = 1 ] || { echo "DISCRIMINATORS needs PER_CONTEXT=1" >&2; exit 1; }
+    args+=(--init-discriminators-from $DISCRIMINATORS)
+  fi
   "$mimic" train "${args[@]}" > "$out/train.log" 2>&1
 fi
 # Each clip under each context: a policy that heeds its context does worse under the other one.

@@ -28,6 +28,7 @@ std::string cell(const IterationMetrics& m, const char* name, const char* format
 void add_train_commands(CLI::App& app) {
   struct Args {
     std::filesystem::path config, out, bench_config, init_from;
+    std::vector<std::filesystem::path> init_discriminators_from;
     bool resume = false;
     int iterations = 0, threads = -1;
     std::vector<std::string> settings;
@@ -41,6 +42,11 @@ void add_train_commands(CLI::App& app) {
   train->add_option("--init-from", args->init_from,
                     "start a new run from another run's weights (RUN or a checkpoint; an exported model too): policy, value, normalisers, "
                     "discriminators; fresh optimisers and counters")
+      ->check(CLI::ExistingPath)
+      ->excludes("--resume");
+  train->add_option("--init-discriminators-from", args->init_discriminators_from,
+                    "start each behaviour context's discriminator (a reward source with per_context) from its own run or model on that "
+                    "behaviour alone: one per context, in context order (after --init-from, whose discriminator they replace)")
       ->check(CLI::ExistingPath)
       ->excludes("--resume");
   train->add_option("--iterations", args->iterations, "override the config's iteration count")->check(CLI::PositiveNumber);
@@ -60,6 +66,7 @@ void add_train_commands(CLI::App& app) {
     opts.run_dir = args->out.empty() ? std::filesystem::path("runs") / args->config.stem() : args->out;
     opts.resume = args->resume;
     opts.init_from = args->init_from;
+    opts.init_discriminators_from = args->init_discriminators_from;
     opts.stop_requested = [] { return g_stop.load(); };
     opts.on_iteration = [](const IterationMetrics& m) {
       spdlog::info("iter {:>5}  samples {:>9}  return {:>9}  len {:>6}  kl {:>8}  ent {:>7}  ev {:>6}  {:>7} samples/s",
@@ -77,6 +84,8 @@ void add_train_commands(CLI::App& app) {
       spdlog::info("weights from {}: policy, value, normalisers and {} of {} reward sources' state{}", args->init_from.string(),
                    trainer.reward_sources_initialised(), cfg.rewards.size(),
                    cfg.policy.learn_std ? "" : fmt::format("; action noise held at the config's log_std {}", cfg.policy.log_std));
+    for (std::size_t k = 0; k < args->init_discriminators_from.size(); ++k)
+      spdlog::info("context {}'s discriminator from {}", k, args->init_discriminators_from[k].string());
     if (trainer.contexts_added_by_init() > 0)
       spdlog::info("{} had no behaviour context: its inputs were widened by the {}-context one-hot, whose weights start at zero "
                    "(every context acts as it did)",

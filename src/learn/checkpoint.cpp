@@ -9,6 +9,7 @@
 #include "core/file_io.hpp"
 #include "learn/archive_util.hpp"
 #include "learn/input_widening.hpp"
+#include "learn/per_context_reward.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
@@ -303,6 +304,45 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
     throw Error(where + ": " + e.what());
   }
   return sources_loaded;
+}
+
+int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints) {
+  int sources = 0;
+  for (std::size_t i = 0; i < t.rewards.size(); ++i) {
+    auto* per_context = dynamic_cast<PerContextRewardSource*>(t.rewards[i].second.get());
+    if (!per_context) continue;
+    if (static_cast<int>(checkpoints.size()) != per_context->contexts())
+      throw Error(per_context->name() + ": " + std::to_string(per_context->contexts()) + " behaviour contexts, " +
+                  std::to_string(checkpoints.size()) + " runs to start their discriminators from (one per context, in context order)");
+    for (std::size_t k = 0; k < checkpoints.size(); ++k) {
+      const std::string where = checkpoints[k].string();
+      if (!std::filesystem::exists(checkpoints[k])) throw Error(where + ": no such checkpoint");
+      try {
+        InputArchive a, saved_sources, s;
+        open_archive(checkpoints[k], a);
+        const YAML::Node saved_rewards = YAML::Load(tensor_bytes(get(a, "config")))["rewards"];
+        const YAML::Node kind = saved_rewards && i < saved_rewards.size() ? saved_rewards[i]["source"] : YAML::Node();
+        if (!kind || kind.as<std::string>() != t.cfg.rewards[i].source)
+          throw Error("its reward source " + std::to_string(i) + " is not a " + t.cfg.rewards[i].source +
+                      " discriminator, which context " + std::to_string(k) + "'s part of " + per_context->name() + " needs");
+        if (saved_rewards[i]["per_context"] && saved_rewards[i]["per_context"].as<bool>())
+          throw Error("its reward source " + std::to_string(i) + " has one discriminator per context; context " + std::to_string(k) +
+                      "'s part starts from a single behaviour's discriminator");
+        a.read("reward_sources", saved_sources);
+        saved_sources.read(std::to_string(i), s);
+        per_context->part(static_cast<int>(k)).load(s);
+      } catch (const YAML::Exception& e) {
+        throw Error(where + ": its saved config does not parse (" + std::string(e.what()) + ")");
+      } catch (const c10::Error& e) {
+        throw Error(where + ": cannot start context " + std::to_string(k) + "'s discriminator from it (" + std::string(e.what_without_backtrace()) + ")");
+      } catch (const Error& e) {
+        throw Error(where + ": " + e.what());
+      }
+    }
+    ++sources;
+  }
+  if (sources == 0) throw Error("no reward source with one discriminator per context (per_context: true) to start from other runs");
+  return sources;
 }
 
 }  // namespace mimic

@@ -227,6 +227,8 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
     throw Error(dir.string() + " already holds a run (checkpoint.pt): pass --resume to continue it, or choose another output directory");
   if (resume && dir.empty()) throw Error("resume needs a run directory");
   if (resume && !opts.init_from.empty()) throw Error("a resumed run goes on from its own checkpoint; --init-from is for a new run");
+  if (resume && !opts.init_discriminators_from.empty())
+    throw Error("a resumed run goes on from its own checkpoint; --init-discriminators-from is for a new run");
   if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
   if (resume && std::filesystem::exists(dir / "config.yaml")) require_same_config(cfg, dir / "config.yaml");
@@ -236,10 +238,14 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
                 ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
   const std::string text = cfg.text;
   const std::filesystem::path init_from = opts.init_from;
+  const std::vector<std::filesystem::path> discriminators_from = opts.init_discriminators_from;
   impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
-  if (!init_from.empty()) {
-    const std::filesystem::path checkpoint = std::filesystem::is_directory(init_from) ? init_from / "checkpoint.pt" : init_from;
-    impl_->sources_from_init = read_weights(*impl_, checkpoint);
+  auto checkpoint_of = [](const std::filesystem::path& p) { return std::filesystem::is_directory(p) ? p / "checkpoint.pt" : p; };
+  if (!init_from.empty()) impl_->sources_from_init = read_weights(*impl_, checkpoint_of(init_from));
+  if (!discriminators_from.empty()) {
+    std::vector<std::filesystem::path> checkpoints;
+    for (const auto& p : discriminators_from) checkpoints.push_back(checkpoint_of(p));
+    impl_->context_discriminators_from_init = read_context_discriminators(*impl_, checkpoints);
   }
   if (dir.empty()) return;
   if (resume) {
@@ -247,7 +253,12 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   } else {
     std::filesystem::create_directories(dir);
     // The run's own record of where its weights came from (a comment: resume ignores it).
-    const std::string origin = init_from.empty() ? "" : "# started from the weights of " + init_from.string() + " (mimic train --init-from)\n";
+    std::string origin = init_from.empty() ? "" : "# started from the weights of " + init_from.string() + " (mimic train --init-from)\n";
+    if (!discriminators_from.empty()) {
+      origin += "# discriminators per context started from";
+      for (const auto& p : discriminators_from) origin += " " + p.string();
+      origin += " (mimic train --init-discriminators-from)\n";
+    }
     write_file_atomic(dir / "config.yaml", origin + text);
   }
   impl_->log = std::make_unique<RunLog>(dir, impl_->cfg.tensorboard, resume ? impl_->iteration : -1);
@@ -287,6 +298,7 @@ long long Trainer::policy_parameters() const {
 
 int Trainer::iteration() const { return impl_->iteration; }
 int Trainer::reward_sources_initialised() const { return impl_->sources_from_init; }
+int Trainer::context_discriminators_initialised() const { return impl_->context_discriminators_from_init; }
 int Trainer::contexts_added_by_init() const { return impl_->contexts_added_by_init; }
 long long Trainer::samples() const { return impl_->samples; }
 int Trainer::input_size() const { return impl_->collector->input_size(); }

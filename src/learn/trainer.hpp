@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "env/env_factory.hpp"
 #include "learn/demonstrations.hpp"
@@ -26,6 +27,10 @@ struct TrainOptions {
   // value, normalisers and discriminators; fresh optimisers and counters (fine-tuning under a
   // changed config). Not with resume.
   std::filesystem::path init_from;
+  // A new run's discriminators per behaviour context (rewards with per_context), each from its
+  // own run (or model) on that behaviour alone, in context order; after init_from, so these win.
+  // Not with resume.
+  std::vector<std::filesystem::path> init_discriminators_from;
   std::function<bool()> stop_requested;  // polled between iterations; a stop writes a checkpoint
   std::function<void(const IterationMetrics&)> on_iteration;  // progress output
   // The program's own environments instead of the config's `env` section (a game, a test).
@@ -48,6 +53,7 @@ class Trainer {
 
   int iteration() const;  // iterations completed
   int reward_sources_initialised() const;  // reward sources loaded from TrainOptions::init_from
+  int context_discriminators_initialised() const;  // per-context sources from init_discriminators_from
   // > 0: TrainOptions::init_from was saved without a behaviour context and its networks were
   // widened by this many context inputs (weighing zero: every context starts acting as it did).
   int contexts_added_by_init() const;

@@ -33,6 +33,7 @@ struct Trainer::Impl {
   long long samples = 0;
   double wall_seconds = 0;  // over all segments of a resumed run
   int sources_from_init = 0;  // reward sources whose state came from TrainOptions::init_from
+  int context_discriminators_from_init = 0;  // per-context sources loaded from init_discriminators_from
   int contexts_added_by_init = 0;  // > 0: init_from had no behaviour context; its inputs were widened
   bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
@@ -58,6 +59,11 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path);
 // (discriminators); optimisers, counters and generators stay fresh. With a fixed covariance the
 // config's log_std replaces the saved one. Returns how many reward sources were loaded.
 int read_weights(Trainer::Impl& t, const std::filesystem::path& path);
+// Part k of every per-context adversarial source from checkpoints[k]: the single discriminator
+// saved there at the same place in the list (a run on context k's behaviour alone). Error when
+// the config has no such source, the counts differ, or a checkpoint holds another kind. Returns
+// how many sources were loaded.
+int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints);
 // Whether the file is an acting-only export (mimic export), read without building a trainer.
 bool is_exported_checkpoint(const std::filesystem::path& path);
 

@@ -488,6 +488,67 @@ TEST(AdversarialImitation, EveryDiscriminatorPerContextStartsAsTheSingleBehaviou
   EXPECT_EQ(t.iteration(), 2);
 }
 
+// Each part from its own behaviour's run (--init-discriminators-from), after the policy's start:
+// a context run whose policy comes from elsewhere (a distilled student) keeps both behaviours'
+// trained discriminators instead of starting one of them from the other's.
+TEST(AdversarialImitation, EachDiscriminatorPerContextStartsFromItsOwnBehavioursRun) {
+  const auto dir = test::temp_dir("gail_init_discriminators");
+  const auto [small, large, experts] = two_orbits(dir, 4);
+  const std::string text = gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, epochs: 2");
+  auto single = [&](const std::string& name, const std::string& expert) {
+    TrainOptions o = oscillator_options();
+    o.run_dir = dir / name;
+    auto run = std::make_unique<Trainer>(parse_train_config(with_experts(text, dir / "small.csv", "expert: " + expert), name + ".yaml"), o);
+    run->run();
+    return run;
+  };
+  const auto small_run = single("small_run", (dir / "small.csv").string());
+  const auto large_run = single("large_run", (dir / "large.csv").string());
+  const std::string two = with_experts(text, dir / "small.csv", experts + ", per_context: true");
+  TrainOptions c = context_oscillator_options();
+  c.run_dir = dir / "context";
+  c.init_from = dir / "small_run";
+  c.init_discriminators_from = {dir / "small_run", dir / "large_run" / "checkpoint.pt"};
+  Trainer t(parse_train_config(two, "osc_context.yaml"), c);
+  EXPECT_EQ(t.reward_sources_initialised(), 1);
+  EXPECT_EQ(t.context_discriminators_initialised(), 1);
+  double runs_differ = 0;
+  for (const Demonstrations& d : {small, large}) {
+    const std::vector<double> s = small_run->discriminator_scores(d, -1).at(0).second, l = large_run->discriminator_scores(d, -1).at(0).second;
+    const std::vector<double> part0 = t.discriminator_scores(d, 0).at(0).second, part1 = t.discriminator_scores(d, 1).at(0).second;
+    ASSERT_EQ(part0.size(), s.size());
+    ASSERT_EQ(part1.size(), l.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      EXPECT_NEAR(part0[i], s[i], 1e-5) << "sample " << i;
+      EXPECT_NEAR(part1[i], l[i], 1e-5) << "sample " << i;
+      runs_differ = std::max(runs_differ, std::abs(s[i] - l[i]));
+    }
+  }
+  EXPECT_GT(runs_differ, 1e-3);  // else part 1 could have come from the small orbit's run
+  EXPECT_NE(read_text_file(dir / "context" / "config.yaml").find("# discriminators per context started from"), std::string::npos);
+  t.run();
+  EXPECT_EQ(t.iteration(), 2);
+
+  auto attempt = [&](const std::string& config, std::vector<std::filesystem::path> from, bool resume = false) {
+    TrainOptions o = context_oscillator_options();
+    o.run_dir = dir / (resume ? "context" : "attempt");
+    o.resume = resume;
+    o.init_discriminators_from = std::move(from);
+    return error_of([&] { Trainer bad(parse_train_config(config, "bad.yaml"), o); });
+  };
+  const std::string count = attempt(two, {dir / "small_run"});
+  EXPECT_NE(count.find("2 behaviour contexts, 1 runs"), std::string::npos) << count;
+  const std::string no_parts = attempt(with_experts(text, dir / "small.csv", experts), {dir / "small_run", dir / "large_run"});
+  EXPECT_NE(no_parts.find("no reward source with one discriminator per context"), std::string::npos) << no_parts;
+  const std::string parts = attempt(two, {dir / "small_run", dir / "context"});
+  EXPECT_NE(parts.find((dir / "context" / "checkpoint.pt").string() + ": its reward source 0 has one discriminator per context"),
+            std::string::npos) << parts;
+  const std::string missing = attempt(two, {dir / "small_run", dir / "nowhere"});
+  EXPECT_NE(missing.find("nowhere: no such checkpoint"), std::string::npos) << missing;
+  const std::string resumed = attempt(two, {dir / "small_run", dir / "large_run"}, true);
+  EXPECT_NE(resumed.find("--init-discriminators-from is for a new run"), std::string::npos) << resumed;
+}
+
 TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
