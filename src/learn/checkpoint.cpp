@@ -323,8 +323,8 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
         const YAML::Node saved_rewards = YAML::Load(tensor_bytes(get(a, "config")))["rewards"];
         const YAML::Node kind = saved_rewards && i < saved_rewards.size() ? saved_rewards[i]["source"] : YAML::Node();
         if (!kind || kind.as<std::string>() != t.cfg.rewards[i].source)
-          throw Error("its reward source " + std::to_string(i) + " is not a " + t.cfg.rewards[i].source +
-                      " discriminator, which context " + std::to_string(k) + "'s part of " + per_context->name() + " needs");
+          throw Error("its reward source " + std::to_string(i) + " is not of kind '" + t.cfg.rewards[i].source + "', which context " +
+                      std::to_string(k) + "'s part of " + per_context->name() + " needs");
         if (saved_rewards[i]["per_context"] && saved_rewards[i]["per_context"].as<bool>())
           throw Error("its reward source " + std::to_string(i) + " has one discriminator per context; context " + std::to_string(k) +
                       "'s part starts from a single behaviour's discriminator");

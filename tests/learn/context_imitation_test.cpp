@@ -258,6 +258,12 @@ TEST(AdversarialImitation, EachDiscriminatorPerContextStartsFromItsOwnBehaviours
   const std::string parts = attempt(two, {dir / "small_run", dir / "context"});
   EXPECT_NE(parts.find((dir / "context" / "checkpoint.pt").string() + ": its reward source 0 has one discriminator per context"),
             std::string::npos) << parts;
+  TrainOptions plain = oscillator_options();
+  plain.run_dir = dir / "env_reward_run";
+  Trainer(parse_train_config("iterations: 1\ncollect: {envs: 2, threads: 1, samples: 64}\n", "plain.yaml"), plain).run();
+  const std::string kind = attempt(two, {dir / "small_run", dir / "env_reward_run"});
+  EXPECT_NE(kind.find("env_reward_run/checkpoint.pt: its reward source 0 is not of kind 'gail', which context 1's part of gail needs"),
+            std::string::npos) << kind;
   const std::string missing = attempt(two, {dir / "small_run", dir / "nowhere"});
   EXPECT_NE(missing.find("nowhere: no such checkpoint"), std::string::npos) << missing;
   const std::string resumed = attempt(two, {dir / "small_run", dir / "large_run"}, true);
