@@ -3,45 +3,65 @@
 # heads, with and without the gradient penalty, configs/humanoid_walk_iccgan_cpu.yaml otherwise.
 # ITERATIONS (default 750: 3.07 M samples, where the full config begins to walk) each, then
 # `mimic eval` against the walk clip. Resumes what a previous call left (Ctrl-C and call again).
-# Writes OUT_DIR/table.md (imitation error and progress per cell) and a learning-curve plot.
+# Writes OUT_DIR/table.md (imitation error and progress per cell; cells not yet run are "—") and
+# learning-curve plots of the cells that exist.
 # Usage: scripts/humanoid_iccgan_ablation.sh [OUT_DIR]
-# THREADS (default 2) sets collect.threads. About 30 min a cell on two cores; needs ../shared/data.
+# THREADS (default 2) sets collect.threads. GPS (default "10 0") and HEADS (default "1 8 32 64")
+# pick the cells, so two calls on disjoint cells can share a machine, one core each:
+#   THREADS=1 GPS=10 scripts/humanoid_iccgan_ablation.sh & THREADS=1 GPS=0 scripts/humanoid_iccgan_ablation.sh
+# About 30 min a cell on two cores; needs ../shared/data.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-runs/humanoid_iccgan_ablation}
 mimic=${MIMIC:-build/src/mimic}
 iterations=${ITERATIONS:-750}
 threads=${THREADS:-2}
+gps=${GPS:-10 0}
+heads_list=${HEADS:-1 8 32 64}
 walk=../shared/data/deepmimic/motions/humanoid3d_walk.txt
 [ -f "$walk" ] || { echo "needs $walk (../shared/data beside the repository)" >&2; exit 1; }
 demos=runs/humanoid_walk_links_demos.csv
 mkdir -p "$out" runs
 [ -f "$demos" ] || "$mimic" record-clip configs/humanoid_walk_iccgan_links.yaml --clip "$walk" --passes 8 -o "$demos"
-for gp in 10 0; do
-  for heads in 1 8 32 64; do
+for gp in $gps; do
+  for heads in $heads_list; do
     run="$out/heads${heads}_gp${gp}"
+    echo "cell: $heads heads, penalty $gp -> $run"
     if [ -f "$run/checkpoint.pt" ]; then
       grep -q "^$iterations," "$run/metrics.csv" || "$mimic" train --resume -o "$run" --threads "$threads" >> "$run.log" 2>&1
     else
       "$mimic" train configs/humanoid_walk_iccgan_cpu.yaml -o "$run" --iterations "$iterations" --threads "$threads" \
         --set rewards.0.heads=$heads --set rewards.0.gradient_penalty=$gp > "$run.log" 2>&1
     fi
-    "$mimic" eval "$run" --clip "$walk" --episodes 10 --trials 20 --json "$run.json"
+    [ -f "$run.json" ] || "$mimic" eval "$run" --clip "$walk" --episodes 10 --trials 20 --json "$run.json"
   done
 done
-"$mimic" plot "$out/heads1_gp10" "$out/heads8_gp10" "$out/heads32_gp10" "$out/heads64_gp10" "$out/heads32_gp0" --smooth 10 \
-  --y episode_length --names "1 head" "8 heads" "32 heads" "64 heads" "32 heads, no penalty" \
-  --title "Humanoid walk, discriminator ensemble ablation: episode length" -o "$out/ablation_episode_length.png"
+# Curves and table of whatever cells exist, so each partial call leaves a readable summary.
+for gp in 10 0; do
+  runs=() names=()
+  for heads in 1 8 32 64; do
+    [ -f "$out/heads${heads}_gp${gp}/metrics.csv" ] && { runs+=("$out/heads${heads}_gp${gp}"); names+=("$heads heads"); }
+  done
+  [ ${#runs[@]} -gt 0 ] || continue
+  label=$([ "$gp" = 0 ] && echo "no gradient penalty" || echo "gradient penalty $gp")
+  for y in episode_length iccgan_policy_accuracy; do
+    "$mimic" plot "${runs[@]}" --smooth 10 --y "$y" --names "${names[@]}" \
+      --title "Humanoid walk, ensemble ablation ($label): $y" -o "$out/ablation_gp${gp}_$y.png"
+  done
+done
 python3 - "$out" <<'PY'
-import csv, json, sys
+import csv, json, os, sys
 out = sys.argv[1]
 rows = ["| heads | with gradient penalty (λ 10) | without |", "| --- | --- | --- |"]
 for heads in (1, 8, 32, 64):
     cells = []
     for gp in (10, 0):
-        name = f"heads{heads}_gp{gp}"
-        i = json.load(open(f"{out}/{name}.json"))["imitation"]
-        m = list(csv.DictReader(open(f"{out}/{name}/metrics.csv")))[-1]
+        name = f"{out}/heads{heads}_gp{gp}"
+        if not os.path.exists(f"{name}.json"):
+            cells.append("—")
+            continue
+        i = json.load(open(f"{name}.json"))["imitation"]
+        m = list(csv.DictReader(open(f"{name}/metrics.csv")))[-1]
         progress = f"{i['progress']:.2f}" if i.get("progress") is not None else "—"
         cells.append(f"{i['error_mean']:.3f} ± {i['error_std']:.3f} m, progress {progress}, down {i['down']} "
                      f"({float(m['samples']) / 1e6:.2f} M samples, {float(m['wall_s']):.0f} s)")
