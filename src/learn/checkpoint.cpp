@@ -139,12 +139,17 @@ std::string size_mismatch(const Trainer::Impl& t, std::int64_t in_size, std::int
          std::to_string(t.collector->input_size()) + " and " + std::to_string(t.collector->action_size());
 }
 
+// A checkpoint of another format version would fail later with LibTorch's message about some key.
+void check_format(InputArchive& a) {
+  const auto format = get(a, "format").item<std::int64_t>();
+  if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
+}
+
 // Opens a checkpoint for this trainer: a readable archive of this format, saved for the same
 // action size and (unless `other_input_ok`) input size; returns the saved input size.
 std::int64_t open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a, bool other_input_ok = false) {
   open_archive(path, a);
-  const auto format = get(a, "format").item<std::int64_t>();
-  if (format != kFormat) throw Error("checkpoint format " + std::to_string(format) + ", this mimic reads " + std::to_string(kFormat));
+  check_format(a);
   const auto in_size = get(a, "input_size").item<std::int64_t>();
   const auto act_size = get(a, "action_size").item<std::int64_t>();
   if ((in_size != t.collector->input_size() && !other_input_ok) || act_size != t.collector->action_size())
@@ -320,6 +325,7 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
       try {
         InputArchive a, saved_sources, s;
         open_archive(checkpoints[k], a);
+        check_format(a);
         const YAML::Node saved_rewards = YAML::Load(tensor_bytes(get(a, "config")))["rewards"];
         const YAML::Node kind = saved_rewards && i < saved_rewards.size() ? saved_rewards[i]["source"] : YAML::Node();
         if (!kind || kind.as<std::string>() != t.cfg.rewards[i].source)

@@ -264,6 +264,13 @@ TEST(AdversarialImitation, EachDiscriminatorPerContextStartsFromItsOwnBehaviours
   const std::string kind = attempt(two, {dir / "small_run", dir / "env_reward_run"});
   EXPECT_NE(kind.find("env_reward_run/checkpoint.pt: its reward source 0 is not of kind 'gail', which context 1's part of gail needs"),
             std::string::npos) << kind;
+  // A checkpoint of a later format version is refused by its version, not by a key it lacks.
+  std::filesystem::create_directories(dir / "future_run");
+  torch::serialize::OutputArchive future;
+  future.write("format", torch::tensor(static_cast<std::int64_t>(2)));
+  future.save_to((dir / "future_run" / "checkpoint.pt").string());
+  const std::string format = attempt(two, {dir / "small_run", dir / "future_run"});
+  EXPECT_NE(format.find("future_run/checkpoint.pt: checkpoint format 2, this mimic reads 1"), std::string::npos) << format;
   const std::string missing = attempt(two, {dir / "small_run", dir / "nowhere"});
   EXPECT_NE(missing.find("nowhere: no such checkpoint"), std::string::npos) << missing;
   const std::string resumed = attempt(two, {dir / "small_run", dir / "large_run"}, true);

@@ -270,6 +270,10 @@ TEST(Trainer, BadCheckpointsAreErrorsNamingTheFile) {
   std::ofstream(dir / "cut.pt", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   EXPECT_NE(message(dir / "cut.pt").find("cut.pt: checkpoint is truncated"), std::string::npos) << message(dir / "cut.pt");
   EXPECT_NE(message(dir / "missing.pt").find("no such checkpoint"), std::string::npos);
+  torch::serialize::OutputArchive future;
+  future.write("format", torch::tensor(static_cast<std::int64_t>(2)));
+  future.save_to((dir / "future.pt").string());
+  EXPECT_NE(message(dir / "future.pt").find("future.pt: checkpoint format 2, this mimic reads 1"), std::string::npos) << message(dir / "future.pt");
   // A checkpoint of another environment (the 3-link reacher has 3 actions, not 6).
   Trainer arm(config("env: {name: reacher, links: 3}\ncollect: {envs: 2, samples: 64}\n"));
   arm.save_checkpoint(dir / "arm.pt");
