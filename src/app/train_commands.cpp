@@ -1,6 +1,7 @@
 // mimic train CONFIG.yaml [-o RUN] [--resume] (or --resume -o RUN); mimic export RUN -o MODEL; mimic bench train
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -15,8 +16,9 @@ namespace mimic::app {
 
 namespace {
 
-std::atomic<bool> g_stop{false};
-extern "C" void request_stop(int) { g_stop.store(true); }
+// Ctrl-C or SIGTERM: the first stops the run at its next checkpoint iteration, a second at once.
+std::atomic<int> g_stops{0};
+extern "C" void request_stop(int) { g_stops.fetch_add(1); }
 
 std::string cell(const IterationMetrics& m, const char* name, const char* format) {
   const double v = m.get(name);
@@ -67,8 +69,14 @@ void add_train_commands(CLI::App& app) {
     opts.resume = args->resume;
     opts.init_from = args->init_from;
     opts.init_discriminators_from = args->init_discriminators_from;
-    opts.stop_requested = [] { return g_stop.load(); };
-    opts.on_iteration = [](const IterationMetrics& m) {
+    opts.stop_requests = [] { return g_stops.load(); };
+    opts.on_iteration = [every = cfg.checkpoint_every, last = cfg.iterations, announced = false](const IterationMetrics& m) mutable {
+      if (g_stops.load() == 1 && !announced && m.iteration % every != 0 && m.iteration < last) {
+        spdlog::info("stop requested: going on to iteration {}, the next checkpoint, so that --resume continues as if the run had "
+                     "never stopped; Ctrl-C again to stop after this iteration",
+                     std::min(last, (m.iteration / every + 1) * every));
+        announced = true;
+      }
       spdlog::info("iter {:>5}  samples {:>9}  return {:>9}  len {:>6}  kl {:>8}  ent {:>7}  ev {:>6}  {:>7} samples/s",
                    m.iteration, cell(m, "samples", "{:.0f}"), cell(m, "return", "{:.2f}"), cell(m, "episode_length", "{:.0f}"),
                    cell(m, "kl", "{:.4f}"), cell(m, "entropy", "{:.2f}"), cell(m, "explained_variance", "{:.2f}"),
@@ -91,7 +99,7 @@ void add_train_commands(CLI::App& app) {
                    "(every context acts as it did)",
                    args->init_from.string(), trainer.contexts_added_by_init());
     trainer.run();
-    spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stop.load() ? "stopped" : "done", trainer.iteration(),
+    spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stops.load() > 0 ? "stopped" : "done", trainer.iteration(),
                  trainer.samples(), (opts.run_dir / "checkpoint.pt").string());
   });
 

@@ -282,7 +282,8 @@ IterationMetrics Trainer::iterate() {
 void Trainer::run() {
   const int first = impl_->iteration;
   while (impl_->iteration < impl_->cfg.iterations) {
-    if (impl_->opts.stop_requested && impl_->opts.stop_requested()) break;
+    const int stops = impl_->opts.stop_requests ? impl_->opts.stop_requests() : 0;
+    if (stops >= 2 || (stops == 1 && impl_->iteration % impl_->cfg.checkpoint_every == 0)) break;
     iterate();
   }
   // iterate() has saved at multiples of checkpoint_every; save the last iteration otherwise.

@@ -31,7 +31,11 @@ struct TrainOptions {
   // own run (or model) on that behaviour alone, in context order; after init_from, so these win.
   // Not with resume.
   std::vector<std::filesystem::path> init_discriminators_from;
-  std::function<bool()> stop_requested;  // polled between iterations; a stop writes a checkpoint
+  // Stop requests so far, polled between iterations. One: go on to the next multiple of
+  // checkpoint_every, where episodes restart anyway, so that a resumed run continues exactly as one
+  // never stopped. Two or more: stop after the current iteration; its checkpoint restarts the
+  // episodes in progress there, so the resumed run departs from an unstopped one at that point.
+  std::function<int()> stop_requests;
   std::function<void(const IterationMetrics&)> on_iteration;  // progress output
   // The program's own environments instead of the config's `env` section (a game, a test).
   EnvFactory env_factory;
@@ -46,7 +50,8 @@ class Trainer {
   Trainer(const Trainer&) = delete;
   Trainer& operator=(const Trainer&) = delete;
 
-  // Iterates until the config's iteration count or a stop request, then checkpoints.
+  // Iterates until the config's iteration count or a stop (TrainOptions::stop_requests), then
+  // checkpoints.
   void run();
   // One iteration (collect, learn, log; a checkpoint when one is due).
   IterationMetrics iterate();

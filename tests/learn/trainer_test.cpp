@@ -165,17 +165,39 @@ TEST(Trainer, ResumesAfterAKillInTheMiddleOfAnIterationAsIfNeverKilled) {
   EXPECT_EQ(event_files, 2);
 }
 
-TEST(Trainer, AStopRequestEndsTheRunWithACheckpoint) {
-  const auto dir = test::temp_dir("trainer_stop");
+TEST(Trainer, AStopGoesOnToTheNextCheckpointSoThatTheResumedRunMatchesAndASecondStopsAtOnce) {
+  const auto whole = test::temp_dir("trainer_stop_whole"), stopped = test::temp_dir("trainer_stop"), urgent = test::temp_dir("trainer_stop_now");
+  const std::string text = walker_config(6, 1, 4);
+  {
+    TrainOptions o;
+    o.run_dir = whole;
+    Trainer(config(text), o).run();
+  }
+  // One request after two iterations (as one Ctrl-C): the run goes on to iteration 4, its next
+  // checkpoint, and the resumed run's metrics are the unstopped run's.
   TrainOptions o;
-  o.run_dir = dir;
+  o.run_dir = stopped;
   int polls = 0;
-  o.stop_requested = [&] { return ++polls > 2; };  // as SIGINT after two iterations
-  Trainer t(config(walker_config(10, 1)), o);
+  o.stop_requests = [&] { return ++polls > 2 ? 1 : 0; };
+  Trainer t(config(text), o);
   t.run();
-  EXPECT_EQ(t.iteration(), 2);
-  Trainer check(config(walker_config(10, 1)));
-  check.load_checkpoint(dir / "checkpoint.pt");
+  EXPECT_EQ(t.iteration(), 4);
+  o.resume = true;
+  o.stop_requests = nullptr;
+  Trainer resumed(config(text), o);
+  EXPECT_EQ(resumed.iteration(), 4);
+  resumed.run();
+  EXPECT_EQ(deterministic_columns(read_metrics_csv(whole / "metrics.csv")), deterministic_columns(read_metrics_csv(stopped / "metrics.csv")));
+  // Two requests (a second Ctrl-C): the run stops after the current iteration, with a checkpoint.
+  TrainOptions now;
+  now.run_dir = urgent;
+  int calls = 0;
+  now.stop_requests = [&] { return ++calls > 2 ? 2 : 0; };
+  Trainer u(config(text), now);
+  u.run();
+  EXPECT_EQ(u.iteration(), 2);
+  Trainer check(config(text));
+  check.load_checkpoint(urgent / "checkpoint.pt");
   EXPECT_EQ(check.iteration(), 2);
 }
 
