@@ -9,7 +9,8 @@
 # THREADS (default 2) sets collect.threads. GPS (default "10 0") and HEADS (default "1 8 32 64")
 # pick the cells, so two calls on disjoint cells can share a machine, one core each:
 #   THREADS=1 GPS=10 scripts/humanoid_iccgan_ablation.sh & THREADS=1 GPS=0 scripts/humanoid_iccgan_ablation.sh
-# About 30 min a cell on two cores; needs ../shared/data.
+# With ITERATIONS=500, 22–28 min a cell on one core, two such calls side by side (docs/imitation.md
+# has that run's table); needs ../shared/data.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-runs/humanoid_iccgan_ablation}
@@ -40,7 +41,7 @@ done
 for gp in 10 0; do
   runs=() names=()
   for heads in 1 8 32 64; do
-    [ -f "$out/heads${heads}_gp${gp}/metrics.csv" ] && { runs+=("$out/heads${heads}_gp${gp}"); names+=("$heads heads"); }
+    [ -f "$out/heads${heads}_gp${gp}/metrics.csv" ] && { runs+=("$out/heads${heads}_gp${gp}"); names+=("$heads head$([ "$heads" = 1 ] || echo s)"); }
   done
   [ ${#runs[@]} -gt 0 ] || continue
   label=$([ "$gp" = 0 ] && echo "no gradient penalty" || echo "gradient penalty $gp")
