@@ -173,29 +173,28 @@ TEST(Trainer, AStopGoesOnToTheNextCheckpointSoThatTheResumedRunMatchesAndASecond
     o.run_dir = whole;
     Trainer(config(text), o).run();
   }
-  // One request after two iterations (as one Ctrl-C): the run goes on to iteration 4, its next
-  // checkpoint, and the resumed run's metrics are the unstopped run's.
+  // `requests` stop requests from the third poll on (after two iterations); the iteration reached.
+  auto run_stopped = [&](const std::filesystem::path& dir, int requests) {
+    TrainOptions o;
+    o.run_dir = dir;
+    int polls = 0;
+    o.stop_requests = [&polls, requests] { return ++polls > 2 ? requests : 0; };
+    Trainer t(config(text), o);
+    t.run();
+    return t.iteration();
+  };
+  // One request (as one Ctrl-C): the run goes on to iteration 4, its next checkpoint, and the
+  // resumed run's metrics are the unstopped run's.
+  EXPECT_EQ(run_stopped(stopped, 1), 4);
   TrainOptions o;
   o.run_dir = stopped;
-  int polls = 0;
-  o.stop_requests = [&] { return ++polls > 2 ? 1 : 0; };
-  Trainer t(config(text), o);
-  t.run();
-  EXPECT_EQ(t.iteration(), 4);
   o.resume = true;
-  o.stop_requests = nullptr;
   Trainer resumed(config(text), o);
   EXPECT_EQ(resumed.iteration(), 4);
   resumed.run();
   EXPECT_EQ(deterministic_columns(read_metrics_csv(whole / "metrics.csv")), deterministic_columns(read_metrics_csv(stopped / "metrics.csv")));
   // Two requests (a second Ctrl-C): the run stops after the current iteration, with a checkpoint.
-  TrainOptions now;
-  now.run_dir = urgent;
-  int calls = 0;
-  now.stop_requests = [&] { return ++calls > 2 ? 2 : 0; };
-  Trainer u(config(text), now);
-  u.run();
-  EXPECT_EQ(u.iteration(), 2);
+  EXPECT_EQ(run_stopped(urgent, 2), 2);
   Trainer check(config(text));
   check.load_checkpoint(urgent / "checkpoint.pt");
   EXPECT_EQ(check.iteration(), 2);
