@@ -5,8 +5,9 @@
 // Run directory: config.yaml (the config as given), checkpoint.pt (written atomically every
 // `checkpoint_every` iterations and at exit), metrics.csv, tensorboard/events.*.
 // Reproducibility: the same config and seed give the same metrics, whatever the thread count.
-// Every checkpoint also restarts the episodes in progress, so that a run resumed from a
-// checkpoint continues exactly as the uninterrupted run did.
+// Every checkpoint also restarts the episodes in progress, so that a run resumed from a periodic
+// checkpoint continues exactly as the uninterrupted run did (one written between those, at an
+// urgent stop or an --iterations that is not a multiple, restarts them where that run did not).
 #include <filesystem>
 #include <functional>
 #include <memory>
