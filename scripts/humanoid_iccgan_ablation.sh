@@ -29,12 +29,15 @@ for gp in $gps; do
     run="$out/heads${heads}_gp${gp}"
     echo "cell: $heads heads, penalty $gp -> $run"
     if [ -f "$run/checkpoint.pt" ]; then
-      grep -q "^$iterations," "$run/metrics.csv" || "$mimic" train --resume -o "$run" --threads "$threads" >> "$run.log" 2>&1
+      # --iterations again: a resumed run otherwise goes on to its config's 5,000.
+      grep -q "^$iterations," "$run/metrics.csv" ||
+        "$mimic" train --resume -o "$run" --iterations "$iterations" --threads "$threads" >> "$run.log" 2>&1
     else
       "$mimic" train configs/humanoid_walk_iccgan_cpu.yaml -o "$run" --iterations "$iterations" --threads "$threads" \
         --set rewards.0.heads=$heads --set rewards.0.gradient_penalty=$gp > "$run.log" 2>&1
     fi
-    [ -f "$run.json" ] || "$mimic" eval "$run" --clip "$walk" --episodes 10 --trials 20 --json "$run.json"
+    # Evaluated again when the cell trained on since (a larger ITERATIONS).
+    [ "$run.json" -nt "$run/checkpoint.pt" ] || "$mimic" eval "$run" --clip "$walk" --episodes 10 --trials 20 --json "$run.json"
   done
 done
 # Curves and table of whatever cells exist, so each partial call leaves a readable summary.
