@@ -16,7 +16,7 @@ for gp in 10 0; do
     name="heads${heads}_gp${gp}"
     names+=("$name")
     if [ -f "$out/$name/checkpoint.pt" ]; then
-      grep -q "^$iterations," "$out/$name/metrics.csv" || "$mimic" train --resume -o "$out/$name" >> "$out/$name.log" 2>&1
+      grep -q "^$iterations," "$out/$name/metrics.csv" || "$mimic" train --resume -o "$out/$name" --iterations $iterations >> "$out/$name.log" 2>&1
     else
       "$mimic" train configs/walker_iccgan.yaml -o "$out/$name" --iterations $iterations \
         --set rewards.0.heads=$heads --set rewards.0.gradient_penalty=$gp > "$out/$name.log" 2>&1
