@@ -9,6 +9,8 @@
 # THREADS (default 2) sets collect.threads. GPS (default "10 0") and HEADS (default "1 8 32 64")
 # pick the cells, so two calls on disjoint cells can share a machine, one core each:
 #   THREADS=1 GPS=10 scripts/humanoid_iccgan_ablation.sh & THREADS=1 GPS=0 scripts/humanoid_iccgan_ablation.sh
+# SEEDS (default 1) trains each cell once per seed; seed 1's run is heads<H>_gp<G>, another seed's
+# heads<H>_gp<G>_seed<S>. The table lists every seed of a cell that exists.
 # With ITERATIONS=500, 22–28 min a cell on one core, two such calls side by side (docs/imitation.md
 # has that run's table); needs ../shared/data.
 set -euo pipefail
@@ -19,6 +21,7 @@ iterations=${ITERATIONS:-750}
 threads=${THREADS:-2}
 gps=${GPS:-10 0}
 heads_list=${HEADS:-1 8 32 64}
+seeds=${SEEDS:-1}
 walk=../shared/data/deepmimic/motions/humanoid3d_walk.txt
 [ -f "$walk" ] || { echo "needs $walk (../shared/data beside the repository)" >&2; exit 1; }
 demos=runs/humanoid_walk_links_demos.csv
@@ -26,18 +29,20 @@ mkdir -p "$out" runs
 [ -f "$demos" ] || "$mimic" record-clip configs/humanoid_walk_iccgan_links.yaml --clip "$walk" --passes 8 -o "$demos"
 for gp in $gps; do
   for heads in $heads_list; do
-    run="$out/heads${heads}_gp${gp}"
-    echo "cell: $heads heads, penalty $gp -> $run"
-    if [ -f "$run/checkpoint.pt" ]; then
-      # --iterations again: a resumed run otherwise goes on to its config's 5,000.
-      grep -q "^$iterations," "$run/metrics.csv" ||
-        "$mimic" train --resume -o "$run" --iterations "$iterations" --threads "$threads" >> "$run.log" 2>&1
-    else
-      "$mimic" train configs/humanoid_walk_iccgan_cpu.yaml -o "$run" --iterations "$iterations" --threads "$threads" \
-        --set rewards.0.heads=$heads --set rewards.0.gradient_penalty=$gp > "$run.log" 2>&1
-    fi
-    # Evaluated again when the cell trained on since (a larger ITERATIONS).
-    [ "$run.json" -nt "$run/checkpoint.pt" ] || "$mimic" eval "$run" --clip "$walk" --episodes 10 --trials 20 --json "$run.json"
+    for seed in $seeds; do
+      run="$out/heads${heads}_gp${gp}$([ "$seed" = 1 ] || echo "_seed$seed")"
+      echo "cell: $heads heads, penalty $gp, seed $seed -> $run"
+      if [ -f "$run/checkpoint.pt" ]; then
+        # --iterations again: a resumed run otherwise goes on to its config's 5,000.
+        grep -q "^$iterations," "$run/metrics.csv" ||
+          "$mimic" train --resume -o "$run" --iterations "$iterations" --threads "$threads" >> "$run.log" 2>&1
+      else
+        "$mimic" train configs/humanoid_walk_iccgan_cpu.yaml -o "$run" --iterations "$iterations" --threads "$threads" \
+          --set rewards.0.heads=$heads --set rewards.0.gradient_penalty=$gp --set seed=$seed > "$run.log" 2>&1
+      fi
+      # Evaluated again when the cell trained on since (a larger ITERATIONS).
+      [ "$run.json" -nt "$run/checkpoint.pt" ] || "$mimic" eval "$run" --clip "$walk" --episodes 10 --trials 20 --json "$run.json"
+    done
   done
 done
 # Curves and table of whatever cells exist, so each partial call leaves a readable summary.
@@ -54,21 +59,26 @@ for gp in 10 0; do
   done
 done
 python3 - "$out" <<'PY'
-import csv, json, os, sys
+import csv, json, os, re, sys
 out = sys.argv[1]
 rows = ["| heads | with gradient penalty (λ 10) | without |", "| --- | --- | --- |"]
+def seed_of(name):
+    m = re.search(r"_seed(\d+)$", name)
+    return int(m.group(1)) if m else 1
+
 for heads in (1, 8, 32, 64):
     cells = []
     for gp in (10, 0):
-        name = f"{out}/heads{heads}_gp{gp}"
-        if not os.path.exists(f"{name}.json"):
-            cells.append("—")
-            continue
-        i = json.load(open(f"{name}.json"))["imitation"]
-        m = list(csv.DictReader(open(f"{name}/metrics.csv")))[-1]
-        progress = f"{i['progress']:.2f}" if i.get("progress") is not None else "—"
-        cells.append(f"{i['error_mean']:.3f} ± {i['error_std']:.3f} m, progress {progress}, down {i['down']} "
-                     f"({float(m['samples']) / 1e6:.2f} M samples, {float(m['wall_s']):.0f} s)")
+        base = f"heads{heads}_gp{gp}"
+        names = sorted((f[:-5] for f in os.listdir(out) if re.fullmatch(base + r"(_seed\d+)?\.json", f)), key=seed_of)
+        entries = []
+        for name in names:
+            i = json.load(open(f"{out}/{name}.json"))["imitation"]
+            m = list(csv.DictReader(open(f"{out}/{name}/metrics.csv")))[-1]
+            progress = f"{i['progress']:.2f}" if i.get("progress") is not None else "—"
+            entries.append(f"seed {seed_of(name)}: {i['error_mean']:.3f} ± {i['error_std']:.3f} m, progress {progress}, "
+                           f"down {i['down']} ({float(m['samples']) / 1e6:.2f} M samples, {float(m['wall_s']):.0f} s)")
+        cells.append("<br>".join(entries) if entries else "—")
     rows.append(f"| {heads} | " + " | ".join(cells) + " |")
 table = "\n".join(rows) + "\n"
 open(f"{out}/table.md", "w").write(table)

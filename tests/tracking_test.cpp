@@ -217,6 +217,44 @@ TEST(TrackingEnv, SinkingBelowHalfTheReferencesRootHeightIsAFall) {
   EXPECT_LT(by_height, by_contact);
 }
 
+// Holding the first pose while the walk goes on at about 1 m/s: with max_drift 0.3 the episode
+// ends as Drift, a failure, on the first step the root is more than 0.3 m (horizontally) from the
+// reference's; without it the same steps go on.
+TEST(TrackingEnv, FallingBehindTheReferenceByMaxDriftEndsTheEpisodeAsAFailure) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  auto run = [&](double max_drift) {
+    TrackingConfig cfg;
+    cfg.init = TrackingConfig::Init::Fixed;
+    cfg.max_drift = max_drift;
+    auto env = make_tracking_env(ch, walk, cfg);
+    std::mt19937_64 rng(1);
+    env->reset(rng);
+    EXPECT_LT(env->drift(), 1e-9);  // starts on the reference's root
+    const Eigen::VectorXd hold = env->action_for(walk->frames[0]);
+    std::vector<double> drifts;
+    StepResult r;
+    do {
+      r = env->step(hold);
+      const Vec3 offset = env->world().root_position() - walk->sample(env->time()).root_pos;
+      EXPECT_NEAR(env->drift(), std::hypot(offset.x(), offset.y()), 1e-12);
+      drifts.push_back(env->drift());
+    } while (!r.done() && drifts.size() < 300);
+    return std::pair(r.termination, drifts);
+  };
+  const auto [ended, drifts] = run(0.3);
+  EXPECT_EQ(ended, Termination::Drift);
+  EXPECT_TRUE(is_failure(ended));
+  EXPECT_STREQ(to_string(ended), "drift");
+  EXPECT_GT(drifts.back(), 0.3);
+  for (std::size_t i = 0; i + 1 < drifts.size(); ++i) EXPECT_LE(drifts[i], 0.3) << i;
+  const auto [ended_without, drifts_without] = run(0.0);
+  EXPECT_NE(ended_without, Termination::Drift);
+  ASSERT_GT(drifts_without.size(), drifts.size());
+  for (std::size_t i = 0; i < drifts.size(); ++i) EXPECT_DOUBLE_EQ(drifts_without[i], drifts[i]) << i;
+}
+
 // The reference's centre-of-mass velocity is its mean over the step; over a whole cycle of the
 // walk those means add up to the cycle's displacement (about 1.24 m in 1.27 s).
 TEST(TrackingReward, TheReferencesCentreOfMassVelocityIsItsMeanOverTheStep) {
@@ -296,4 +334,5 @@ TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {
   EXPECT_NE(message("{name: tracking, wieghts: {pose: 1}}").find("wieghts"), std::string::npos);
   EXPECT_NE(message("{name: tracking, scales: {com: -1}}").find("scales.com"), std::string::npos);
   EXPECT_NE(message("{name: tracking, fall_height: 2}").find("fall_height"), std::string::npos);
+  EXPECT_NE(message("{name: tracking, max_drift: -1}").find("max_drift"), std::string::npos);
 }

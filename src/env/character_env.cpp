@@ -201,8 +201,14 @@ bool CharacterEnv::below_reference() const {
   return world_.root_position().z() < cfg_.fall_height * reference_->sample(time_).root_pos.z();
 }
 
+double CharacterEnv::drift() const {
+  if (!reference_) return 0.0;
+  return (world_.root_position() - reference_->sample(time_).root_pos).head<2>().norm();
+}
+
 Termination CharacterEnv::check_termination() const {
   if (cfg_.early_termination && (fall_contact() || below_reference())) return Termination::Fall;
+  if (cfg_.max_drift > 0 && drift() > cfg_.max_drift) return Termination::Drift;
   if (reference_ && reference_->loop != LoopMode::Wrap && time_ >= reference_->duration() - 1e-9) return Termination::ClipEnd;
   if (elapsed_ >= clip_left_ - 1e-9) return Termination::ClipEnd;
   if (elapsed_ >= cfg_.max_seconds - 1e-9) return Termination::TimeLimit;

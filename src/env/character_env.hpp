@@ -30,6 +30,10 @@ struct CharacterEnvConfig {
   // current clip time, e.g. sitting on the thighs with the torso off the ground, which no torso
   // contact catches and which a tracking policy otherwise learns to settle into. Needs a reference.
   double fall_height = 0.0;
+  // > 0: the episode ends as Drift (a failure) once the root is more than this many metres from
+  // the reference's, horizontally: a tracking policy that falls behind a fast clip loses the rest
+  // of the episode instead of trotting on in place (MimicKit's pose termination). Needs a reference.
+  double max_drift = 0.0;
   double max_seconds = 20.0;  // TimeLimit
   TerrainSpec terrain;             // flat by default; every kind starts flat around the origin
   std::vector<PushSpec> pushes;    // times from each episode's start
@@ -105,6 +109,8 @@ class CharacterEnv : public Env {
   bool fall_contact() const;
   // The root below fall_height times the reference's root height (false without either).
   bool below_reference() const;
+  // The root's horizontal distance from the reference's at the current clip time (0 without one).
+  double drift() const;
   // The projectile launcher (null unless config().projectiles.enabled); its stats are per episode.
   const ProjectileLauncher* projectiles() const { return launcher_.get(); }
   ProjectileLauncher* projectiles() { return launcher_.get(); }

@@ -8,6 +8,7 @@ const char* to_string(Termination t) {
     case Termination::Fall: return "fall";
     case Termination::TimeLimit: return "time_limit";
     case Termination::ClipEnd: return "clip_end";
+    case Termination::Drift: return "drift";
   }
   return "?";
 }

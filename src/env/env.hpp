@@ -17,10 +17,11 @@ enum class Termination {
   Fall,       // a failure: a body that must not touch the ground did (or a task's failure rule)
   TimeLimit,  // truncated by the episode's length: not a failure, bootstrap the value
   ClipEnd,    // a non-cyclic reference clip ended
+  Drift,      // a failure: the root strayed too far from the reference's (a tracking rule)
 };
 const char* to_string(Termination t);
 // True for endings after which the return is cut off (not bootstrapped): failures.
-inline bool is_failure(Termination t) { return t == Termination::Fall; }
+inline bool is_failure(Termination t) { return t == Termination::Fall || t == Termination::Drift; }
 
 struct StepResult {
   Eigen::VectorXd observation;

@@ -114,6 +114,7 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.early_termination = s.boolean("early_termination", c.early_termination);
   c.fall_links = s.texts("fall_links", c.fall_links);
   c.fall_height = s.number("fall_height", c.fall_height, 0, 1);
+  c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
   c.com_term = s.choice("com_term", "position", {"position", "velocity"}) == "velocity" ? ComTerm::Velocity : ComTerm::Position;
   c.observations.names = s.texts("observations", c.observations.names);
   c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);

@@ -76,6 +76,7 @@ struct TrackingConfig {
   double max_seconds = 20.0;       // cyclic clips; a non-cyclic clip ends at its end
   bool early_termination = true;   // off for contact-rich clips (roll, get-up)
   double fall_height = 0.5;        // a fall also below this fraction of the reference's root height (0: off)
+  double max_drift = 0.0;          // > 0: metres from the reference's root that end an episode (Drift)
   std::vector<std::string> fall_links;  // empty: the character's own choice
   ObservationConfig observations{.names = {"full_state", "phase"}};
   SimConfig sim;

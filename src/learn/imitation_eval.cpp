@@ -84,10 +84,12 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
         sim_frames.push_back(env.world().link_frames());
         ref_frames.push_back(forward_kinematics(clip->skeleton, ref));
       }
+      // Drift is a training rule (the root strayed from the reference's), not part of the protocol:
+      // the trial goes on through it, as it would without the rule; only falls end it.
       if (!over) {
         ret += r.reward();
-        fell |= is_failure(r.termination);
-        over = r.done();
+        fell |= r.termination == Termination::Fall;
+        over = r.done() && r.termination != Termination::Drift;
         sim_end = env.world().root_position();
         low = sim_end.z() < 0.5 * ref.root_pos.z() ? low + 1 : 0;
         lay |= low >= kLyingFrames;

@@ -127,6 +127,28 @@ TEST(ImitationError, ACollapseWithoutATerminationCountsAsDownNotAsAFall) {
   EXPECT_EQ(bad.down, 3);
 }
 
+// max_drift is a training rule: a trial goes on through it, so the protocol's figures are those
+// of the same env without the rule (here a held pose that the walk leaves behind within a second).
+TEST(ImitationError, ADriftTerminationDoesNotEndATrialOrCountAsAFall) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  auto measure = [&](double max_drift) {
+    TrackingConfig cfg;
+    cfg.max_seconds = 2.0;
+    cfg.max_drift = max_drift;
+    auto env = make_tracking_env(ch, walk, cfg);
+    const Eigen::VectorXd hold_action = env->action_for(walk->frames[0]);
+    return measure_imitation(*env, [&](const Eigen::VectorXd&) { return hold_action; }, 1, 3);
+  };
+  const ImitationReport with = measure(0.2), without = measure(0.0);
+  EXPECT_EQ(with.trial_errors, without.trial_errors);
+  EXPECT_EQ(with.trial_returns, without.trial_returns);
+  EXPECT_EQ(with.trial_progress, without.trial_progress);
+  EXPECT_EQ(with.falls, without.falls);
+  EXPECT_EQ(with.down, without.down);
+}
+
 TEST(Robustness, HeavyCubesFellAStandingHumanoidSoonerThanNone) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
