@@ -33,7 +33,7 @@ for gp in $gps; do
       run="$out/heads${heads}_gp${gp}$([ "$seed" = 1 ] || echo "_seed$seed")"
       echo "cell: $heads heads, penalty $gp, seed $seed -> $run"
       if [ -f "$run/checkpoint.pt" ]; then
-        # --iterations again: a resumed run otherwise goes on to its config's 5,000.
+        # --iterations again: cells started before config.yaml recorded it would go on to 5,000.
         grep -q "^$iterations," "$run/metrics.csv" ||
           "$mimic" train --resume -o "$run" --iterations "$iterations" --threads "$threads" >> "$run.log" 2>&1
       else

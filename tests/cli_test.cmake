@@ -119,6 +119,12 @@ run_fails("no checkpoint to resume from" train ${OUT}/walker.yaml -o ${OUT}/noth
 # Without a config a resumed run goes on with its own; with another one it is refused, naming the key.
 run_ok(train --resume -o ${OUT}/walker_run --iterations 4)
 expect_in("${LAST_OUT}" "done after 4 iterations")
+# --iterations is the run's own from then on: config.yaml says 4, and a plain resume stops there.
+file(READ ${OUT}/walker_run/config.yaml run_config)
+expect_in("${run_config}" "iterations: 4")
+run_ok(train --resume -o ${OUT}/walker_run)
+expect_in("${LAST_OUT}" "done after 4 iterations")
+expect_line_count(${OUT}/walker_run/metrics.csv 5)
 file(READ ${OUT}/walker.yaml walker_text)
 string(REPLACE "seed: 2" "seed: 99" walker_text "${walker_text}")
 file(WRITE ${OUT}/walker_other_seed.yaml "${walker_text}")
@@ -136,6 +142,9 @@ expect_in("${LAST_OUT}" "weights from ${OUT}/walker_run: policy, value, normalis
 expect_in("${LAST_OUT}" "done after 1 iterations (128 samples)")
 file(READ ${OUT}/walker_fine/config.yaml fine_config)
 expect_in("${fine_config}" "# started from the weights of ${OUT}/walker_run (mimic train --init-from)")
+expect_in("${fine_config}" "iterations: 1")  # a new run's --iterations, the comment above kept
+run_ok(train --resume -o ${OUT}/walker_fine)
+expect_in("${LAST_OUT}" "done after 1 iterations (128 samples)")
 run_ok(train --resume -o ${OUT}/walker_fine --iterations 2)
 expect_in("${LAST_OUT}" "done after 2 iterations (256 samples)")
 # Distillation: the walker run teaches both contexts of a student; the result is a run like any other.

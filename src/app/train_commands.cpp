@@ -51,7 +51,7 @@ void add_train_commands(CLI::App& app) {
                     "behaviour alone: one per context, in context order (after --init-from, whose discriminator they replace)")
       ->check(CLI::ExistingPath)
       ->excludes("--resume");
-  train->add_option("--iterations", args->iterations, "override the config's iteration count")->check(CLI::PositiveNumber);
+  train->add_option("--iterations", args->iterations, "override the config's iteration count (kept in RUN/config.yaml)")->check(CLI::PositiveNumber);
   train->add_option("--threads", args->threads, "override collect.threads (0: every core)")->check(CLI::NonNegativeNumber);
   train->add_option("--set", args->settings, "override a config value: KEY.PATH=VALUE (e.g. ppo.clip=0.1, rewards.0.episodes=10); repeatable");
   train->callback([args] {
@@ -61,8 +61,10 @@ void add_train_commands(CLI::App& app) {
       args->config = args->out / "config.yaml";
     }
     const std::string source = args->config.string();
-    TrainConfig cfg = parse_train_config(override_config(read_text_file(args->config), source, args->settings), source);
-    if (args->iterations > 0) cfg.iterations = args->iterations;
+    std::string text = override_config(read_text_file(args->config), source, args->settings);
+    // Into the text, so that the run's config.yaml records it and a plain --resume goes on to it.
+    if (args->iterations > 0) text = with_iterations(text, source, args->iterations);
+    TrainConfig cfg = parse_train_config(text, source);
     if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     TrainOptions opts;
     opts.run_dir = args->out.empty() ? std::filesystem::path("runs") / args->config.stem() : args->out;

@@ -42,6 +42,7 @@ std::optional<std::string> first_difference(const YAML::Node& a, const YAML::Nod
     }
   for (const std::string& key : keys) {
     if (path == "collect" && key == "threads") continue;  // the same results with any thread count
+    if (path.empty() && key == "iterations") continue;     // how far a run goes (mimic train --iterations)
     if (auto d = first_difference(a[key], b[key], prefix + key)) return d;
   }
   return std::nullopt;
@@ -242,6 +243,31 @@ std::string override_config(const std::string& text, const std::string& source, 
   YAML::Emitter out;
   out << root;
   return note + "\n" + out.c_str() + "\n";
+}
+
+std::string with_iterations(const std::string& text, const std::string& source, int n) {
+  if (n < 1) throw Error(source + ": iterations must be at least 1, not " + std::to_string(n));
+  const YamlReader r(source);
+  const YAML::Node root = r.parse(text, "not valid YAML");
+  if (!root.IsNull() && !root.IsMap()) r.fail(root, "a training config is a mapping of sections (env, policy, ppo, ...)");
+  const YAML::Node current = root.IsMap() ? root["iterations"] : YAML::Node();
+  if (current.IsDefined() && current.IsScalar() && current.Scalar() == std::to_string(n)) return text;
+  const std::string line = "iterations: " + std::to_string(n);
+  // A block-style top-level key starts its line: replace that line, whatever follows it.
+  std::size_t at = 0;
+  std::vector<std::size_t> starts;
+  while (at < text.size()) {
+    if (text.compare(at, 11, "iterations:") == 0) starts.push_back(at);
+    const std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  if (starts.size() == 1) {
+    const std::size_t end = text.find('\n', starts[0]);
+    return text.substr(0, starts[0]) + line + (end == std::string::npos ? "\n" : text.substr(end));
+  }
+  if (starts.empty() && !current.IsDefined()) return text + (text.empty() || text.back() == '\n' ? "" : "\n") + line + "\n";
+  return override_config(text, source, {"iterations=" + std::to_string(n)});
 }
 
 std::string config_difference(const std::string& first, const std::string& first_label, const std::string& second,

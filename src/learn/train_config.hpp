@@ -127,8 +127,15 @@ TrainConfig load_train_config(const std::filesystem::path& path);
 // lists them; Error naming the setting when a path does not fit the config.
 std::string override_config(const std::string& text, const std::string& source, const std::vector<std::string>& settings);
 
-// Where two configs differ in what they ask for — comments, layout and collect.threads (which
-// changes no result) aside: "rewards.0.features: [links, link_velocities] in run/config.yaml,
+// The config text with its top-level `iterations` set to n, comments and layout kept: the line
+// `iterations: ...` is replaced (or one added), or, for a config that names it some other way
+// (flow style), the text is re-emitted as override_config does. The text itself when it already
+// asks for n. How a run's config.yaml records `mimic train --iterations`, so that a plain
+// `--resume` goes on to the same count.
+std::string with_iterations(const std::string& text, const std::string& source, int n);
+
+// Where two configs differ in what they ask for — comments, layout, the iteration count and
+// collect.threads (neither changes what a checkpoint holds) aside: "rewards.0.features: [links, link_velocities] in run/config.yaml,
 // [links] in walk.yaml", each config named by its label; empty when they agree. Bad YAML is an
 // Error naming its label.
 std::string config_difference(const std::string& first, const std::string& first_label, const std::string& second,

@@ -250,6 +250,12 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (dir.empty()) return;
   if (resume) {
     load_checkpoint(dir / "checkpoint.pt");
+    // The count this resume goes on to becomes the run's own, so a later plain --resume keeps it.
+    if (std::filesystem::exists(dir / "config.yaml")) {
+      const std::string saved = read_text_file(dir / "config.yaml");
+      const std::string updated = with_iterations(saved, (dir / "config.yaml").string(), impl_->cfg.iterations);
+      if (updated != saved) write_file_atomic(dir / "config.yaml", updated);
+    }
   } else {
     std::filesystem::create_directories(dir);
     // The run's own record of where its weights came from (a comment: resume ignores it).

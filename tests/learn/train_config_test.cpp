@@ -159,9 +159,27 @@ TEST(OverrideConfig, SetsNestedKeysAndListElementsAndNamesBadPaths) {
   EXPECT_NE(error("ppo.clip=[1").find("not valid YAML"), std::string::npos);
 }
 
-TEST(ConfigDifference, NamesTheFirstKeyThatDiffersAndIgnoresCommentsLayoutAndThreads) {
+// mimic train --iterations is written into the run's config.yaml: its own line replaced, comments
+// and the rest of the text as they were.
+TEST(WithIterations, ReplacesTheLineOrAddsOneAndKeepsComments) {
+  const std::string text = "# the walk\nseed: 1\niterations: 5000   # about 20 M samples\nppo: {clip: 0.2}\n";
+  EXPECT_EQ(with_iterations(text, "w.yaml", 500), "# the walk\nseed: 1\niterations: 500\nppo: {clip: 0.2}\n");
+  EXPECT_EQ(parse_train_config(with_iterations(text, "w.yaml", 500), "w.yaml").iterations, 500);
+  EXPECT_EQ(with_iterations(text, "w.yaml", 5000), text);  // already so: untouched
+  EXPECT_EQ(with_iterations("seed: 1\n# iterations: 3 in a comment\n", "w.yaml", 7), "seed: 1\n# iterations: 3 in a comment\niterations: 7\n");
+  EXPECT_EQ(with_iterations("seed: 1", "w.yaml", 7), "seed: 1\niterations: 7\n");
+  EXPECT_EQ(with_iterations("iterations: 2", "w.yaml", 7), "iterations: 7\n");
+  // A nested `iterations:` is another key; a flow-style config is re-emitted with the new count.
+  EXPECT_EQ(parse_train_config(with_iterations("seed: 1\nrewards:\n  - {source: env}\n", "w.yaml", 9), "w.yaml").iterations, 9);
+  EXPECT_EQ(parse_train_config(with_iterations("{seed: 1, iterations: 2}", "w.yaml", 9), "w.yaml").iterations, 9);
+  EXPECT_THROW((void)with_iterations(text, "w.yaml", 0), mimic::Error);
+  EXPECT_THROW((void)with_iterations("[1, 2]", "w.yaml", 3), mimic::Error);
+}
+
+TEST(ConfigDifference, NamesTheFirstKeyThatDiffersAndIgnoresCommentsLayoutThreadsAndIterations) {
   const std::string text = "seed: 1\ncollect: {envs: 4, threads: 2}\nrewards:\n  - source: iccgan\n    features: [links]\n";
   EXPECT_EQ(config_difference(text, "a.yaml", text, "b.yaml"), "");
+  EXPECT_EQ(config_difference(text, "a.yaml", text + "iterations: 500\n", "b.yaml"), "");
   EXPECT_EQ(config_difference(text, "a.yaml", "# a comment\nseed: 1\ncollect:\n  envs: 4\n  threads: 1\nrewards: [{source: iccgan, features: [links]}]\n", "b.yaml"), "");
   EXPECT_EQ(config_difference(text, "a.yaml", "seed: 1\ncollect: {envs: 4}\nrewards: [{source: iccgan, features: [links, link_velocities]}]\n", "b.yaml"),
             "rewards.0.features: [links] in a.yaml, [links, link_velocities] in b.yaml");

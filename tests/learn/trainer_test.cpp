@@ -233,14 +233,14 @@ TEST(Trainer, ResumeRefusesAConfigOtherThanTheRunsOwn) {
     EXPECT_NE(what.find("edited.yaml: differs from " + (dir / "config.yaml").string()), std::string::npos) << what;
     EXPECT_NE(what.find("(ppo.clip: absent in " + (dir / "config.yaml").string() + ", 0.1 in edited.yaml)"), std::string::npos) << what;
   }
-  // The same config with other comments and another thread count resumes, whatever its iteration
-  // count (--iterations overrides the parsed value).
-  std::string same = "# the walker, on two threads\n" + walker_config(1, 2);
-  TrainConfig longer = parse_train_config(same, "same.yaml");
-  longer.iterations = 2;
-  Trainer t(longer, o);
+  // The same config with other comments, another thread count and another iteration count (as
+  // mimic train --iterations writes it) resumes; the run's config.yaml then records the new count,
+  // and nothing else changes in it.
+  const std::string same = "# the walker, on two threads\n" + walker_config(2, 2);
+  Trainer t(parse_train_config(same, "same.yaml"), o);
   t.run();
   EXPECT_EQ(t.iteration(), 2);
+  EXPECT_EQ(read_text_file(dir / "config.yaml"), walker_config(2, 1));
 }
 
 TEST(Trainer, AnExportedModelActsAsItsRunWithoutOptimiserStateAndIsNotResumed) {
