@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "core/error.hpp"
 #include "core/yaml_reader.hpp"
@@ -35,6 +36,15 @@ TrackedState state_of(const Skeleton& sk, const Pose& pose) {
   s.velocity.joint_ang.assign(sk.joints.size(), Vec3::Zero());
   s.links = forward_kinematics(sk, pose);
   return s;
+}
+
+// A tracking env on `clip` from its first frame (FSI), reset.
+std::unique_ptr<CharacterEnv> env_at_clip_start(const CharacterModel& ch, std::shared_ptr<const Clip> clip, TrackingConfig cfg) {
+  cfg.init = TrackingConfig::Init::Fixed;
+  auto env = make_tracking_env(ch, std::move(clip), cfg);
+  std::mt19937_64 rng(1);
+  env->reset(rng);
+  return env;
 }
 
 double sum_of_terms(const StepResult& r) {
@@ -195,12 +205,9 @@ TEST(TrackingEnv, SinkingBelowHalfTheReferencesRootHeightIsAFall) {
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   auto run = [&](double fall_height) {
     TrackingConfig cfg;
-    cfg.init = TrackingConfig::Init::Fixed;
     cfg.max_seconds = 3.0;
     cfg.fall_height = fall_height;
-    auto env = make_tracking_env(ch, walk, cfg);
-    std::mt19937_64 rng(1);
-    env->reset(rng);
+    auto env = env_at_clip_start(ch, walk, cfg);
     const Eigen::VectorXd fold = env->action_for(test::folded(ch, walk->frames[0]));
     StepResult r;
     int steps = 0;
@@ -226,11 +233,8 @@ TEST(TrackingEnv, FallingBehindTheReferenceByMaxDriftEndsTheEpisodeAsAFailure) {
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   auto run = [&](double max_drift) {
     TrackingConfig cfg;
-    cfg.init = TrackingConfig::Init::Fixed;
     cfg.max_drift = max_drift;
-    auto env = make_tracking_env(ch, walk, cfg);
-    std::mt19937_64 rng(1);
-    env->reset(rng);
+    auto env = env_at_clip_start(ch, walk, cfg);
     EXPECT_LT(env->drift(), 1e-9);  // starts on the reference's root
     const Eigen::VectorXd hold = env->action_for(walk->frames[0]);
     std::vector<double> drifts;

@@ -192,10 +192,11 @@ void evaluate(const EvalArgs& args) {
   const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args.run);
   const EpisodeStats s = trainer->run_episodes(args.episodes, args.seed, !args.stochastic);
   const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
+  // Episodes ended by a failure: a fall, or a tracking env's max_drift (the JSON's key predates it).
   const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
   const char* actions = args.stochastic ? "sampled" : "mean";
   spdlog::info("{}", args.run.string());
-  spdlog::info("  episodes        {} ({} actions): return {:.2f} +- {:.2f}, length {:.1f} steps, fall rate {:.2f}", s.returns.size(),
+  spdlog::info("  episodes        {} ({} actions): return {:.2f} +- {:.2f}, length {:.1f} steps, failure rate {:.2f}", s.returns.size(),
                actions, mean_of(s.returns), std_of(s.returns), mean_of(lengths), fall_rate);
   std::string json = fmt::format("{{\"run\": {}, \"episodes\": {}, \"actions\": \"{}\", \"return_mean\": {}, \"return_std\": {}, "
                                  "\"episode_length\": {}, \"fall_rate\": {}",
