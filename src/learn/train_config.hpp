@@ -135,9 +135,9 @@ std::string override_config(const std::string& text, const std::string& source, 
 std::string with_iterations(const std::string& text, const std::string& source, int n);
 
 // Where two configs differ in what they ask for — comments, layout, the iteration count and
-// collect.threads (neither changes what a checkpoint holds) aside: "rewards.0.features: [links, link_velocities] in run/config.yaml,
-// [links] in walk.yaml", each config named by its label; empty when they agree. Bad YAML is an
-// Error naming its label.
+// collect.threads (neither changes what a checkpoint holds) aside: "rewards.0.features: [links,
+// link_velocities] in run/config.yaml, [links] in walk.yaml", each config named by its label;
+// empty when they agree. Bad YAML is an Error naming its label.
 std::string config_difference(const std::string& first, const std::string& first_label, const std::string& second,
                               const std::string& second_label);
 
