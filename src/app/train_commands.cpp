@@ -61,10 +61,8 @@ void add_train_commands(CLI::App& app) {
       args->config = args->out / "config.yaml";
     }
     const std::string source = args->config.string();
-    std::string text = override_config(read_text_file(args->config), source, args->settings);
-    // Into the text, so that the run's config.yaml records it and a plain --resume goes on to it.
-    if (args->iterations > 0) text = with_iterations(text, source, args->iterations);
-    TrainConfig cfg = parse_train_config(text, source);
+    TrainConfig cfg = parse_train_config(override_config(read_text_file(args->config), source, args->settings), source);
+    if (args->iterations > 0) cfg.iterations = args->iterations;  // the Trainer records it in RUN/config.yaml
     if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     TrainOptions opts;
     opts.run_dir = args->out.empty() ? std::filesystem::path("runs") / args->config.stem() : args->out;

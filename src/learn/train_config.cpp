@@ -252,6 +252,7 @@ std::string with_iterations(const std::string& text, const std::string& source, 
   if (!root.IsNull() && !root.IsMap()) r.fail(root, "a training config is a mapping of sections (env, policy, ppo, ...)");
   const YAML::Node current = root.IsMap() ? root["iterations"] : YAML::Node();
   if (current.IsDefined() && current.IsScalar() && current.Scalar() == std::to_string(n)) return text;
+  if (!current.IsDefined() && n == TrainConfig{}.iterations) return text;  // asks for n by default
   const std::string line = "iterations: " + std::to_string(n);
   // A block-style top-level key starts its line: replace that line, whatever follows it.
   std::size_t at = 0;

@@ -130,8 +130,8 @@ std::string override_config(const std::string& text, const std::string& source, 
 // The config text with its top-level `iterations` set to n, comments and layout kept: the line
 // `iterations: ...` is replaced (or one added), or, for a config that names it some other way
 // (flow style), the text is re-emitted as override_config does. The text itself when it already
-// asks for n. How a run's config.yaml records `mimic train --iterations`, so that a plain
-// `--resume` goes on to the same count.
+// asks for n (also by leaving the default). How a run's config.yaml records the count the run goes
+// to (`mimic train --iterations`), so that a plain `--resume` goes on to the same count.
 std::string with_iterations(const std::string& text, const std::string& source, int n);
 
 // Where two configs differ in what they ask for — comments, layout, the iteration count and

@@ -236,7 +236,7 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (resume && is_exported_checkpoint(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() +
                 ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
-  const std::string text = cfg.text;
+  const std::string text = cfg.text, cfg_source = cfg.source;
   const std::filesystem::path init_from = opts.init_from;
   const std::vector<std::filesystem::path> discriminators_from = opts.init_discriminators_from;
   impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
@@ -265,7 +265,8 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
       for (const auto& p : discriminators_from) origin += " " + p.string();
       origin += " (mimic train --init-discriminators-from)\n";
     }
-    write_file_atomic(dir / "config.yaml", origin + text);
+    // With the count this run goes to (an --iterations override), so a plain --resume keeps it.
+    write_file_atomic(dir / "config.yaml", with_iterations(origin + text, cfg_source, impl_->cfg.iterations));
   }
   impl_->log = std::make_unique<RunLog>(dir, impl_->cfg.tensorboard, resume ? impl_->iteration : -1);
 }

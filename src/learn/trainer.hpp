@@ -2,9 +2,9 @@
 // A PPO training run: collect, compute rewards and advantages, update, log, checkpoint.
 // Free of LibTorch headers so that the command line and tools include it cheaply.
 //
-// Run directory: config.yaml (the config as given; a resume rewrites its iteration count to the
-// one it goes on to, so that the next plain resume keeps it), checkpoint.pt (written atomically every
-// `checkpoint_every` iterations and at exit), metrics.csv, tensorboard/events.*.
+// Run directory: config.yaml (the config as given, with the iteration count the run goes to, which a
+// resume rewrites to its own so that the next plain resume keeps it), checkpoint.pt (written
+// atomically every `checkpoint_every` iterations and at exit), metrics.csv, tensorboard/events.*.
 // Reproducibility: the same config and seed give the same metrics, whatever the thread count.
 // Every checkpoint also restarts the episodes in progress, so that a run resumed from a periodic
 // checkpoint continues exactly as the uninterrupted run did (one written between those, at an

@@ -169,6 +169,8 @@ TEST(WithIterations, ReplacesTheLineOrAddsOneAndKeepsComments) {
   EXPECT_EQ(with_iterations("seed: 1\n# iterations: 3 in a comment\n", "w.yaml", 7), "seed: 1\n# iterations: 3 in a comment\niterations: 7\n");
   EXPECT_EQ(with_iterations("seed: 1", "w.yaml", 7), "seed: 1\niterations: 7\n");
   EXPECT_EQ(with_iterations("iterations: 2", "w.yaml", 7), "iterations: 7\n");
+  const int default_count = TrainConfig{}.iterations;  // a config without the key asks for it
+  EXPECT_EQ(with_iterations("seed: 1\n", "w.yaml", default_count), "seed: 1\n");
   // A nested `iterations:` is another key; a flow-style config is re-emitted with the new count.
   EXPECT_EQ(parse_train_config(with_iterations("seed: 1\nrewards:\n  - {source: env}\n", "w.yaml", 9), "w.yaml").iterations, 9);
   EXPECT_EQ(parse_train_config(with_iterations("{seed: 1, iterations: 2}", "w.yaml", 9), "w.yaml").iterations, 9);
