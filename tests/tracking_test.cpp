@@ -259,6 +259,46 @@ TEST(TrackingEnv, FallingBehindTheReferenceByMaxDriftEndsTheEpisodeAsAFailure) {
   for (std::size_t i = 0; i < drifts.size(); ++i) EXPECT_DOUBLE_EQ(drifts_without[i], drifts[i]) << i;
 }
 
+// "reference_root": where the clip's root is, seen from the character's root in its heading frame.
+TEST(TrackingEnv, ReferenceRootIsTheClipsRootInTheCharactersHeadingFrame) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  TrackingConfig cfg;
+  cfg.observations.names = {"full_state", "reference_root", "phase"};
+  auto env = env_at_clip_start(ch, walk, cfg);
+  const ObservationSlice slice = env->observation_layout()[1];
+  ASSERT_EQ(slice.name, "reference_root");
+  ASSERT_EQ(slice.size, 3);
+  InitState start = init_state_from_clip(*walk, 0.0);
+  EXPECT_LT(env->reset(start).segment(slice.offset, 3).norm(), 1e-9);  // on the reference
+  // Turned to face world +y and moved 1 m along +x and 0.1 m down: the reference's root lies 1 m
+  // to the character's left (world -x) and 0.1 m above.
+  const Vec3 root = start.pose.root_pos;
+  const Quat turn = Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ())) * HeadingFrame::of(start.pose).yaw.conjugate();
+  start.pose.rot[0] = turn * start.pose.rot[0];
+  start.pose.root_pos = root + Vec3(1.0, 0.0, -0.1);
+  const Eigen::Vector3d seen = env->reset(start).segment(slice.offset, 3);
+  EXPECT_NEAR(seen.x(), 0.0, 1e-9);
+  EXPECT_NEAR(seen.y(), 1.0, 1e-9);
+  EXPECT_NEAR(seen.z(), 0.1, 1e-9);
+  // A cyclic clip's root moves on cycle by cycle: after a cycle and a half the reference is ahead.
+  start.time = 1.5 * walk->duration();
+  start.pose.root_pos = root;
+  const Vec3 ahead = walk->sample(start.time).root_pos - root;
+  EXPECT_NEAR(env->reset(start).segment(slice.offset, 3).head<2>().norm(), ahead.head<2>().norm(), 1e-9);
+  EXPECT_GT(ahead.head<2>().norm(), 1.5);
+  // It needs a clip.
+  CharacterEnvConfig no_clip;
+  no_clip.observations.names = {"full_state", "reference_root"};
+  try {
+    CharacterEnv bare(ch, no_clip, nullptr);
+    FAIL() << "reference_root without a clip";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "observations: 'reference_root' needs a reference clip");
+  }
+}
+
 // The reference's centre-of-mass velocity is its mean over the step; over a whole cycle of the
 // walk those means add up to the cycle's displacement (about 1.24 m in 1.27 s).
 TEST(TrackingReward, TheReferencesCentreOfMassVelocityIsItsMeanOverTheStep) {

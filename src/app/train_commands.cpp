@@ -20,6 +20,12 @@ namespace {
 std::atomic<int> g_stops{0};
 extern "C" void request_stop(int) { g_stops.fetch_add(1); }
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 std::string cell(const IterationMetrics& m, const char* name, const char* format) {
   const double v = m.get(name);
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string("-");
@@ -98,6 +104,10 @@ void add_train_commands(CLI::App& app) {
       spdlog::info("{} had no behaviour context: its inputs were widened by the {}-context one-hot, whose weights start at zero "
                    "(every context acts as it did)",
                    args->init_from.string(), trainer.contexts_added_by_init());
+    if (!trainer.parts_added_by_init().empty())
+      spdlog::info("{} was saved without the observation parts {}: its inputs were widened by them, with weights starting at zero "
+                   "(the policy acts as it did until it learns to use them)",
+                   args->init_from.string(), join_names(trainer.parts_added_by_init()));
     trainer.run();
     spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stops.load() > 0 ? "stopped" : "done", trainer.iteration(),
                  trainer.samples(), (opts.run_dir / "checkpoint.pt").string());

@@ -9,7 +9,7 @@
 namespace mimic {
 namespace {
 
-const std::vector<std::string> kKnown = {"full_state", "egocentric", "links", "link_velocities", "phase", "height_map"};
+const std::vector<std::string> kKnown = {"full_state", "egocentric", "links", "link_velocities", "phase", "reference_root", "height_map"};
 
 // Appends to `out` at `k` (a running index).
 struct Writer {
@@ -51,7 +51,8 @@ ObservationBuilder::ObservationBuilder(const World& world, const ObservationConf
       for (const auto& k : kKnown) known += (known.empty() ? "" : ", ") + k;
       throw Error("observations: unknown observation '" + name + "' (known: " + known + ")");
     }
-    if (name == "phase" && !has_reference) throw Error("observations: 'phase' needs a reference clip");
+    if ((name == "phase" || name == "reference_root") && !has_reference)
+      throw Error("observations: '" + name + "' needs a reference clip");
     layout_.push_back(ObservationSlice{name, size_, part_size(name)});
     size_ += layout_.back().size;
   }
@@ -71,6 +72,7 @@ int ObservationBuilder::part_size(const std::string& name) const {
   if (name == "links") return cfg_.link_history * 7 * nj;
   if (name == "link_velocities") return 6 * nj;
   if (name == "height_map") return cfg_.height_map_size * cfg_.height_map_size;
+  if (name == "reference_root") return 3;
   return 1;  // phase
 }
 
@@ -138,6 +140,8 @@ void ObservationBuilder::build(const ObservationContext& ctx, Eigen::VectorXd& o
           const Vec3 p = height_map_point(heading, i, j);
           w.put((ctx.terrain ? ctx.terrain->height(p.x(), p.y()) : 0.0) - pose.root_pos.z());
         }
+    } else if (name == "reference_root") {
+      w.put(heading.dir_to_local(ctx.reference->sample(ctx.time).root_pos - pose.root_pos));
     } else {  // phase
       const double dur = ctx.reference->duration();
       w.put(dur > 0 ? std::fmod(std::max(0.0, ctx.time), dur) / dur : 0.0);

@@ -9,6 +9,10 @@
 //                    control steps, in the heading frame of the latest one
 //   link_velocities  every link's linear and angular velocity in the heading frame
 //   phase            the reference clip's phase in [0, 1)
+//   reference_root   the reference clip's root relative to the character's, in the heading frame
+//                    (x ahead, y left, z up; m): where the clip is, so a tracking policy can hold
+//                    its distance rather than learn a pace (a cyclic clip's root advances cycle
+//                    by cycle)
 //   height_map       terrain heights minus the root height on an n x n grid in the heading frame
 //                    (seed 003's height-map input, after Peng et al. 2018): row i at
 //                    x = ahead + (i - (n-1)/2) * spacing, column j at y = (j - (n-1)/2) * spacing,
@@ -28,7 +32,7 @@ namespace mimic {
 struct ObservationContext {
   const World* world = nullptr;
   const std::deque<LinkFrames>* history = nullptr;  // latest last; at least one entry
-  const Clip* reference = nullptr;                  // for "phase"
+  const Clip* reference = nullptr;                  // for "phase" and "reference_root"
   double time = 0.0;                                // episode time on the reference clip
   const Terrain* terrain = nullptr;                 // for "height_map"; none: flat ground at z = 0
 };
@@ -43,7 +47,8 @@ struct ObservationConfig {
 
 class ObservationBuilder {
  public:
-  // Throws Error naming an unknown observation, or "phase" without a reference clip.
+  // Throws Error naming an unknown observation, or "phase" or "reference_root" without a
+  // reference clip.
   ObservationBuilder(const World& world, const ObservationConfig& cfg, bool has_reference);
   int size() const { return size_; }
   const std::vector<ObservationSlice>& layout() const { return layout_; }

@@ -3,6 +3,7 @@
 // Written to memory, then atomically to disk; read back with errors naming the file.
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -171,17 +172,45 @@ int added_context_inputs(Trainer::Impl& t, const YAML::Node& saved_config, std::
   return 0;
 }
 
-// The saved normaliser's statistics at their new places; a context input gets the moments of
-// contexts drawn evenly (mean 1/K, variance (1/K)(1 - 1/K)) over the saved count.
+// The observation parts this config added to those of the saved run (rebuilt from its config's
+// env for its layout), and where each saved input now lies; an Error where a saved part is
+// missing, resized or moved. Empty: the saved env could not be rebuilt (a program's own), or its
+// input is not its layout's (a policy history other than this config's).
+struct AddedParts {
+  std::vector<std::string> names;
+  std::vector<std::int64_t> kept;
+};
+AddedParts added_observation_parts(const Trainer::Impl& t, const std::string& saved_text, std::int64_t saved_input) {
+  std::vector<ObservationSlice> saved_layout;
+  try {
+    const YAML::Node env = YAML::Load(saved_text)["env"];
+    if (!env) return {};
+    saved_layout = make_env_factory(env, YamlReader(saved_text))()->observation_layout();
+  } catch (const std::exception&) {
+    return {};  // reported as the size mismatch it is
+  }
+  const std::int64_t frames = t.collector->input_size() / t.collector->frame_size();
+  std::int64_t saved_width = 0;
+  for (const ObservationSlice& s : saved_layout) saved_width += s.size;
+  if (saved_width * frames != saved_input) return {};
+  AddedParts added;
+  added.kept = mapped_columns(saved_layout, t.layout, frames);
+  for (const ObservationSlice& s : t.layout)
+    if (std::none_of(saved_layout.begin(), saved_layout.end(), [&](const ObservationSlice& o) { return o.name == s.name; }))
+      added.names.push_back(s.name);
+  return added;
+}
+
+// The saved normaliser's statistics at their new places; a new input starts at `mean` and
+// `variance` over the saved count (a context's: those of contexts drawn evenly, 1/K and
+// (1/K)(1 - 1/K); another part's: 0 and 1, its raw value, as a long run's count barely moves).
 void read_widened_normalizer(InputArchive& a, const std::string& key, RunningNormalizer& n, const std::vector<std::int64_t>& kept,
-                             int contexts) {
+                             double mean, double variance) {
   InputArchive sub;
   a.read(key, sub);
   const double count = get(sub, "count").item<double>();
-  const double p = 1.0 / contexts;
-  const Eigen::VectorXd mean = tensor_vec(widen_columns(get(sub, "mean"), kept, n.size(), p));
-  const Eigen::VectorXd m2 = tensor_vec(widen_columns(get(sub, "m2"), kept, n.size(), count * p * (1.0 - p)));
-  n.set_state(count, mean, m2);
+  n.set_state(count, tensor_vec(widen_columns(get(sub, "mean"), kept, n.size(), mean)),
+              tensor_vec(widen_columns(get(sub, "m2"), kept, n.size(), count * variance)));
 }
 
 }  // namespace
@@ -259,27 +288,40 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
   try {
     InputArchive a;
     const std::int64_t saved_input = open_for(t, path, a, /*other_input_ok=*/true);
-    const YAML::Node saved_config = YAML::Load(tensor_bytes(get(a, "config")));
-    // A single-behaviour run may start a context run: its inputs widen, the context's weigh zero.
+    const std::string saved_text = tensor_bytes(get(a, "config"));
+    const YAML::Node saved_config = YAML::Load(saved_text);
+    // A single-behaviour run may start a context run, and any run one whose observation gained
+    // parts: its inputs widen, the new ones weigh zero.
     int added = 0;
+    std::vector<std::int64_t> kept;
+    double new_mean = 0.0, new_variance = 1.0;
     if (saved_input != t.collector->input_size()) {
       added = added_context_inputs(t, saved_config, saved_input);
-      if (added == 0) throw Error(size_mismatch(t, saved_input, t.collector->action_size()));
-      t.contexts_added_by_init = added;
+      if (added > 0) {
+        const std::int64_t frames = t.collector->input_size() / t.collector->frame_size();
+        kept = widened_columns(saved_input, saved_input / frames, frames, added);
+        t.contexts_added_by_init = added;
+        new_mean = 1.0 / added, new_variance = new_mean * (1.0 - new_mean);
+      } else {
+        AddedParts parts = added_observation_parts(t, saved_text, saved_input);
+        if (parts.names.empty()) throw Error(size_mismatch(t, saved_input, t.collector->action_size()));
+        kept = std::move(parts.kept);
+        t.parts_added_by_init = std::move(parts.names);
+      }
+    } else {
+      added_observation_parts(t, saved_text, saved_input);  // an error where the same parts are reordered
     }
     InputArchive policy, value, sources;
     a.read("policy", policy);
     a.read("value", value);
-    if (added == 0) {
+    if (kept.empty()) {
       t.learner->policy()->load(policy);
       t.learner->value()->load(value);
       read_normalizer(a, "obs_norm", t.obs_norm);
     } else {
-      const std::int64_t frames = t.collector->input_size() / t.collector->frame_size();
-      const auto kept = widened_columns(saved_input, saved_input / frames, frames, added);
       load_widened(*t.learner->policy(), policy, kept, t.collector->input_size());
       load_widened(*t.learner->value(), value, kept, t.collector->input_size());
-      read_widened_normalizer(a, "obs_norm", t.obs_norm, kept, added);
+      read_widened_normalizer(a, "obs_norm", t.obs_norm, kept, new_mean, new_variance);
     }
     read_normalizer(a, "return_norm", t.return_norm);
     // A fixed covariance is the config's choice, not the checkpoint's.

@@ -15,6 +15,40 @@ std::vector<std::int64_t> widened_columns(std::int64_t saved_width, std::int64_t
   return kept;
 }
 
+namespace {
+std::int64_t frame_width(const std::vector<ObservationSlice>& layout) {
+  std::int64_t w = 0;
+  for (const ObservationSlice& s : layout) w = std::max<std::int64_t>(w, s.offset + s.size);
+  return w;
+}
+}  // namespace
+
+std::vector<std::int64_t> mapped_columns(const std::vector<ObservationSlice>& saved_layout, const std::vector<ObservationSlice>& layout,
+                                         std::int64_t frames) {
+  const std::int64_t saved_width = frame_width(saved_layout), width = frame_width(layout);
+  std::vector<std::int64_t> in_frame(static_cast<std::size_t>(saved_width), -1);
+  auto next = layout.begin();
+  for (const ObservationSlice& s : saved_layout) {
+    auto same_name = [&](const ObservationSlice& n) { return n.name == s.name; };
+    const auto found = std::find_if(next, layout.end(), same_name);
+    if (found == layout.end()) {
+      const bool earlier = std::find_if(layout.begin(), next, same_name) != next;
+      throw Error("observation part '" + s.name + "' of the saved network " +
+                  (earlier ? "comes earlier in the config's observation (parts may be added, not reordered)" : "is not in the config's observation"));
+    }
+    if (found->size != s.size)
+      throw Error("observation part '" + s.name + "' had " + std::to_string(s.size) + " values, the config's has " + std::to_string(found->size));
+    for (int i = 0; i < s.size; ++i) in_frame[static_cast<std::size_t>(s.offset + i)] = found->offset + i;
+    next = found + 1;
+  }
+  if (std::find(in_frame.begin(), in_frame.end(), -1) != in_frame.end()) throw Error("mapped_columns: the saved layout has gaps");
+  std::vector<std::int64_t> kept;
+  kept.reserve(static_cast<std::size_t>(frames * saved_width));
+  for (std::int64_t f = 0; f < frames; ++f)
+    for (const std::int64_t c : in_frame) kept.push_back(f * width + c);
+  return kept;
+}
+
 torch::Tensor widen_columns(const torch::Tensor& saved, const std::vector<std::int64_t>& kept, std::int64_t new_width, double fill) {
   const auto n = static_cast<std::int64_t>(kept.size());
   if (saved.dim() < 1 || saved.dim() > 2 || saved.size(-1) != n)
@@ -30,7 +64,7 @@ torch::Tensor widen_columns(const torch::Tensor& saved, const std::vector<std::i
 void load_widened(torch::nn::Module& module, torch::serialize::InputArchive& archive, const std::vector<std::int64_t>& kept,
                   std::int64_t new_width) {
   if (dynamic_cast<torch::nn::GRUImpl*>(&module) != nullptr)
-    throw Error("a GRU's per-frame inputs cannot be widened (network.history > 1): start the context run from scratch");
+    throw Error("a GRU's per-frame inputs cannot be widened (network.history > 1): start the run from scratch");
   const torch::NoGradGuard no_grad;
   auto copy_into = [&](const std::string& key, torch::Tensor& target, bool is_buffer) {
     torch::Tensor saved;

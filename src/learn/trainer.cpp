@@ -308,6 +308,7 @@ int Trainer::iteration() const { return impl_->iteration; }
 int Trainer::reward_sources_initialised() const { return impl_->sources_from_init; }
 int Trainer::context_discriminators_initialised() const { return impl_->context_discriminators_from_init; }
 int Trainer::contexts_added_by_init() const { return impl_->contexts_added_by_init; }
+const std::vector<std::string>& Trainer::parts_added_by_init() const { return impl_->parts_added_by_init; }
 long long Trainer::samples() const { return impl_->samples; }
 int Trainer::input_size() const { return impl_->collector->input_size(); }
 int Trainer::action_size() const { return impl_->collector->action_size(); }

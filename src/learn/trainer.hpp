@@ -64,6 +64,9 @@ class Trainer {
   // > 0: TrainOptions::init_from was saved without a behaviour context and its networks were
   // widened by this many context inputs (weighing zero: every context starts acting as it did).
   int contexts_added_by_init() const;
+  // Observation parts (by name) TrainOptions::init_from was saved without; its networks were
+  // widened by them (weighing zero, normalised as their raw values).
+  const std::vector<std::string>& parts_added_by_init() const;
   long long samples() const;
   int input_size() const;
   int action_size() const;

@@ -35,6 +35,7 @@ struct Trainer::Impl {
   int sources_from_init = 0;  // reward sources whose state came from TrainOptions::init_from
   int context_discriminators_from_init = 0;  // per-context sources loaded from init_discriminators_from
   int contexts_added_by_init = 0;  // > 0: init_from had no behaviour context; its inputs were widened
+  std::vector<std::string> parts_added_by_init;  // observation parts init_from lacked; its inputs were widened
   bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
 

@@ -31,6 +31,26 @@ TEST(InputWidening, ColumnsMoveByTheInputsAddedAfterEachBlock) {
   EXPECT_THROW(widened_columns(5, 3, 2, 1), Error);  // two blocks of 3 do not fit 5
 }
 
+TEST(InputWidening, SavedPartsGoToTheirNamesPlacesInEachFrame) {
+  const std::vector<ObservationSlice> saved = {{"state", 0, 3}, {"phase", 3, 1}};
+  // A 2-value part between them: state 0 1 2, (new 3 4), phase 5; two frames of 6.
+  const std::vector<ObservationSlice> now = {{"state", 0, 3}, {"offset", 3, 2}, {"phase", 5, 1}};
+  EXPECT_EQ(mapped_columns(saved, now, 2), (std::vector<std::int64_t>{0, 1, 2, 5, 6, 7, 8, 11}));
+  EXPECT_EQ(mapped_columns(saved, saved, 1), (std::vector<std::int64_t>{0, 1, 2, 3}));
+  auto message = [&](const std::vector<ObservationSlice>& layout) {
+    try {
+      mapped_columns(saved, layout, 1);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({{"state", 0, 3}}), "observation part 'phase' of the saved network is not in the config's observation");
+  EXPECT_EQ(message({{"phase", 0, 1}, {"state", 1, 3}}),
+            "observation part 'phase' of the saved network comes earlier in the config's observation (parts may be added, not reordered)");
+  EXPECT_EQ(message({{"state", 0, 4}, {"phase", 4, 1}}), "observation part 'state' had 3 values, the config's has 4");
+}
+
 TEST(InputWidening, SavedColumnsGoToTheirPlacesAndTheRestIsFilled) {
   const torch::Tensor w = torch::tensor({1.0f, 2.0f, 3.0f, 4.0f}).view({2, 2});
   const torch::Tensor wide = widen_columns(w, {0, 2}, 3, 0.0);

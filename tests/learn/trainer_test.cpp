@@ -11,6 +11,7 @@
 #include "core/file_io.hpp"
 #include "learn/trainer_impl.hpp"
 #include "toy_env.hpp"
+#include "../humanoid_data.hpp"
 #include "../test_data.hpp"
 
 using namespace mimic;
@@ -268,6 +269,49 @@ TEST(Trainer, AnExportedModelActsAsItsRunWithoutOptimiserStateAndIsNotResumed) {
     FAIL() << "an exported model was resumed";
   } catch (const mimic::Error& e) {
     EXPECT_NE(std::string(e.what()).find("checkpoint.pt: an exported model"), std::string::npos) << e.what();
+  }
+}
+
+// --init-from a run whose observation lacked a part the config now names (reference_root): the
+// saved weights keep their inputs, the new part's weigh zero, so the policy acts as it did.
+TEST(Trainer, ARunWithAnAddedObservationPartStartsFromOneWithoutItActingAsItDid) {
+  MIMIC_NEED_HUMANOID();
+  const auto dir = test::temp_dir("trainer_added_part");
+  auto text = [](const std::string& observations) {
+    return "seed: 3\niterations: 1\nenv: {name: tracking, max_seconds: 0.3, observations: " + observations +
+           "}\ncollect: {envs: 2, samples: 64}\npolicy: {hidden: [8]}\nvalue: {hidden: [8]}\nppo: {epochs: 1, value_epochs: 1}\n";
+  };
+  TrainOptions o;
+  o.run_dir = dir / "source";
+  Trainer source(config(text("[full_state, phase]")), o);
+  source.run();
+  o.run_dir = dir / "widened";
+  o.init_from = dir / "source";
+  Trainer t(config(text("[full_state, reference_root, phase]")), o);
+  EXPECT_EQ(t.parts_added_by_init(), std::vector<std::string>{"reference_root"});
+  ASSERT_EQ(t.input_size(), source.input_size() + 3);
+  const int state = source.input_size() - 1;  // full_state, then the phase
+  Eigen::VectorXd input = Eigen::VectorXd::LinSpaced(source.input_size(), -1.0, 1.0);
+  for (const Eigen::Vector3d& offset : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.4, -0.3, 2.0)}) {
+    Eigen::VectorXd wide(t.input_size());
+    wide << input.head(state), offset, input.tail(1);
+    EXPECT_TRUE(t.act(wide).isApprox(source.act(input), 1e-6)) << offset.transpose();
+  }
+  // The saved statistics at their places; the new part normalised as its raw value.
+  const RunningNormalizer& norm = t.impl().obs_norm;
+  EXPECT_DOUBLE_EQ(norm.count(), source.impl().obs_norm.count());
+  EXPECT_TRUE(norm.mean().head(state).isApprox(source.impl().obs_norm.mean().head(state)));
+  EXPECT_DOUBLE_EQ(norm.mean()[state + 3], source.impl().obs_norm.mean()[state]);
+  EXPECT_EQ(norm.mean().segment(state, 3), Eigen::Vector3d::Zero());
+  EXPECT_TRUE(norm.variance().segment(state, 3).isApprox(Eigen::Vector3d::Ones()));
+  // Parts may be added, not reordered.
+  o.run_dir = dir / "reordered";
+  try {
+    Trainer reordered(config(text("[phase, full_state]")), o);
+    FAIL() << "started a reordered observation";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("source/checkpoint.pt: observation part 'phase' of the saved network comes earlier"), std::string::npos)
+        << e.what();
   }
 }
 
