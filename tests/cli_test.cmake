@@ -37,6 +37,18 @@ function(expect_in text what)
   endif()
 endfunction()
 
+# Started without a kernel chosen, mimic runs OpenBLAS's Haswell kernels on an AVX2 machine
+# (core/blas_kernel.hpp: the same numbers on every machine).
+if(DEFINED ENV{OPENBLAS_CORETYPE} AND "$ENV{OPENBLAS_CORETYPE}" STREQUAL "Haswell")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=OPENBLAS_CORETYPE --unset=ATEN_CPU_CAPABILITY OPENBLAS_VERBOSE=2
+                          ${MIMIC} --version RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(REGEX MATCHALL "Core: [A-Za-z0-9]+" cores "${out}${err}")
+  list(GET cores -1 last_core)
+  if(NOT rc EQUAL 0 OR NOT last_core STREQUAL "Core: Haswell")
+    message(FATAL_ERROR "mimic --version on its own kernel choice (${rc}): ${cores}\n${out}${err}")
+  endif()
+endif()
+
 # The README's main job on its embedded default.
 run_ok(demo -o ${OUT}/demo --no-video --train-iterations 2)
 expect_in("${LAST_OUT}" "jumping_jack")

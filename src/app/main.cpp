@@ -4,9 +4,11 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "core/blas_kernel.hpp"
 #include "core/error.hpp"
 
 int main(int argc, char** argv) {
+  mimic::pin_blas_kernel(argv);  // the same numbers on every machine (may start the program again)
   CLI::App app{"mimic: physics-based character controllers learnt from human motion"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "mimic 0.1.0");
