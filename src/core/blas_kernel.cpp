@@ -9,10 +9,11 @@ namespace mimic {
 
 void pin_blas_kernel(char** argv) {
 #if defined(__x86_64__)
-  if (std::getenv("OPENBLAS_CORETYPE") != nullptr) return;
   if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) return;
-  setenv("OPENBLAS_CORETYPE", "Haswell", 1);
+  // LibTorch reads its variable at its first operation: setting it now is soon enough.
   if (std::getenv("ATEN_CPU_CAPABILITY") == nullptr) setenv("ATEN_CPU_CAPABILITY", "avx2", 1);
+  if (std::getenv("OPENBLAS_CORETYPE") != nullptr) return;
+  setenv("OPENBLAS_CORETYPE", "Haswell", 1);
   execv("/proc/self/exe", argv);
   // Not re-executed: this process keeps the kernel OpenBLAS chose.
 #else

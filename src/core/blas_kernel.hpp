@@ -7,11 +7,11 @@
 
 namespace mimic {
 
-// Where OPENBLAS_CORETYPE is unset and the CPU has AVX2 and FMA: sets it to Haswell (and caps
-// LibTorch's own vector kernels at AVX2, ATEN_CPU_CAPABILITY) and executes the program again
-// from the start with the same arguments, as OpenBLAS reads the variable only when it loads.
-// Returns where it changes nothing: the variable was set (a user's choice of kernel is kept),
-// another CPU, or the re-execution failed.
+// On a CPU with AVX2 and FMA: caps LibTorch's own vector kernels at AVX2 (ATEN_CPU_CAPABILITY,
+// unless set) and, where OPENBLAS_CORETYPE is unset, sets it to Haswell and executes the program
+// again from the start with the same arguments, as OpenBLAS reads it only when it loads. Returns
+// where it does not re-execute: the variable was set (a user's choice of kernel is kept), another
+// CPU, or the re-execution failed.
 void pin_blas_kernel(char** argv);
 
 // The kernel the loaded OpenBLAS uses ("Haswell"), or "" where it cannot say.

@@ -12,6 +12,7 @@ TEST(BlasKernel, OpenBlasRunsHaswellsKernelsOnEveryAvx2Machine) {
   if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) GTEST_SKIP() << "this CPU has no AVX2 and FMA";
   const char* chosen = std::getenv("OPENBLAS_CORETYPE");
   ASSERT_NE(chosen, nullptr) << "the test program did not pin the kernel";
+  ASSERT_NE(std::getenv("ATEN_CPU_CAPABILITY"), nullptr);
   // LibTorch's matrix products go to the OpenBLAS this program loaded (after a first product).
   (void)torch::mm(torch::ones({4, 4}), torch::ones({4, 4}));
   const std::string name = mimic::blas_kernel_name();
