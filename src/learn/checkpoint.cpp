@@ -174,25 +174,26 @@ int added_context_inputs(Trainer::Impl& t, const YAML::Node& saved_config, std::
 
 // The observation parts this config added to those of the saved run (rebuilt from its config's
 // env for its layout), and where each saved input now lies; an Error where a saved part is
-// missing, resized or moved. Empty: the saved env could not be rebuilt (a program's own), or its
-// input is not its layout's (a policy history other than this config's).
+// missing, resized or moved. No names: nothing was added, or `why_not` says why it cannot tell
+// (the saved env could not be rebuilt, or its input is not its layout's).
 struct AddedParts {
   std::vector<std::string> names;
   std::vector<std::int64_t> kept;
+  std::string why_not;
 };
-AddedParts added_observation_parts(const Trainer::Impl& t, const std::string& saved_text, std::int64_t saved_input) {
+AddedParts added_observation_parts(const Trainer::Impl& t, const std::string& where, const YAML::Node& saved_config,
+                                   std::int64_t saved_input) {
   std::vector<ObservationSlice> saved_layout;
   try {
-    const YAML::Node env = YAML::Load(saved_text)["env"];
-    if (!env) return {};
-    saved_layout = make_env_factory(env, YamlReader(saved_text))()->observation_layout();
-  } catch (const std::exception&) {
-    return {};  // reported as the size mismatch it is
+    if (!saved_config["env"]) return {{}, {}, "its config names no environment"};
+    saved_layout = make_env_factory(saved_config["env"], YamlReader(where + "'s config"))()->observation_layout();
+  } catch (const std::exception& e) {
+    return {{}, {}, std::string("its environment could not be rebuilt to compare observations: ") + e.what()};
   }
   const std::int64_t frames = t.collector->input_size() / t.collector->frame_size();
   std::int64_t saved_width = 0;
   for (const ObservationSlice& s : saved_layout) saved_width += s.size;
-  if (saved_width * frames != saved_input) return {};
+  if (saved_width * frames != saved_input) return {{}, {}, "its policy stacks another number of frames"};
   AddedParts added;
   added.kept = mapped_columns(saved_layout, t.layout, frames);
   for (const ObservationSlice& s : t.layout)
@@ -288,8 +289,7 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
   try {
     InputArchive a;
     const std::int64_t saved_input = open_for(t, path, a, /*other_input_ok=*/true);
-    const std::string saved_text = tensor_bytes(get(a, "config"));
-    const YAML::Node saved_config = YAML::Load(saved_text);
+    const YAML::Node saved_config = YAML::Load(tensor_bytes(get(a, "config")));
     // A single-behaviour run may start a context run, and any run one whose observation gained
     // parts: its inputs widen, the new ones weigh zero.
     int added = 0;
@@ -303,13 +303,14 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
         t.contexts_added_by_init = added;
         new_mean = 1.0 / added, new_variance = new_mean * (1.0 - new_mean);
       } else {
-        AddedParts parts = added_observation_parts(t, saved_text, saved_input);
-        if (parts.names.empty()) throw Error(size_mismatch(t, saved_input, t.collector->action_size()));
+        AddedParts parts = added_observation_parts(t, where, saved_config, saved_input);
+        if (parts.names.empty())
+          throw Error(size_mismatch(t, saved_input, t.collector->action_size()) + (parts.why_not.empty() ? "" : " (" + parts.why_not + ")"));
         kept = std::move(parts.kept);
         t.parts_added_by_init = std::move(parts.names);
       }
     } else {
-      added_observation_parts(t, saved_text, saved_input);  // an error where the same parts are reordered
+      added_observation_parts(t, where, saved_config, saved_input);  // an error where the same parts are reordered
     }
     InputArchive policy, value, sources;
     a.read("policy", policy);
