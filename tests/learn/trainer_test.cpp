@@ -313,6 +313,19 @@ TEST(Trainer, ARunWithAnAddedObservationPartStartsFromOneWithoutItActingAsItDid)
     EXPECT_NE(std::string(e.what()).find("source/checkpoint.pt: observation part 'phase' of the saved network comes earlier"), std::string::npos)
         << e.what();
   }
+  // Another policy history is a size mismatch that says why the inputs could not be mapped.
+  o.run_dir = dir / "two_frames";
+  std::string stacked = text("[full_state, phase]");
+  const std::string one_frame = "policy: {hidden: [8]}\nvalue: {hidden: [8]}";
+  ASSERT_NE(stacked.find(one_frame), std::string::npos);
+  stacked.replace(stacked.find(one_frame), one_frame.size(), "policy: {hidden: [8], history: 2}\nvalue: {hidden: [8], history: 2}");
+  try {
+    Trainer two_frames(config(stacked), o);
+    FAIL() << "started a two-frame policy from a one-frame one";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("saved for an input of"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("(its policy stacks another number of frames)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Trainer, BadCheckpointsAreErrorsNamingTheFile) {
