@@ -10,6 +10,8 @@
 #   INIT     a run or model each new clip starts from (`mimic train --init-from`; default none:
 #            from scratch), e.g. models/humanoid_walk_iccgan to start the run from the walk
 #   LOG_STD  `learnt` (default) or a log σ to hold the action noise at (e.g. -1.66)
+#   SETS     more config overrides for new runs, KEY=VALUE separated by spaces (`mimic train --set`),
+#            e.g. SETS="env.max_drift=0.5"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-runs/iccgan_clips}
@@ -42,6 +44,7 @@ for clip in "${clips[@]}"; do
     args=("$config" -o "$run" --threads "$threads")
     [ "$init" != none ] && args+=(--init-from "$init")
     [ "$log_std" != learnt ] && args+=(--set policy.learn_std=false --set "policy.log_std=$log_std")
+    for set in ${SETS:-}; do args+=(--set "$set"); done
     "$mimic" train "${args[@]}" > "$run.log" 2>&1
   fi
   "$mimic" eval "$run" --clip "$motions/humanoid3d_$clip.txt" --episodes 20 --trials 20 --latency --json "$run.json"

@@ -633,3 +633,75 @@ TEST(HumanoidForward, FallLinksChooseWhichContactsEndTheEpisode) {
       },
       Error);
 }
+
+// Holding the start pose while the walk (turned and moved off the track) goes on at about 1 m/s:
+// with max_drift 0.1 the episode ends as Drift, a failure, on the first step the root is more than
+// 0.1 m from the start's clip played on from the start and placed as the start was; without it
+// the same steps go on. The expected root is computed here from the clip directly: the clip's
+// displacement since the start, turned into the start's heading frame.
+TEST(HumanoidForward, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = moved(*test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
+  auto run = [&](double max_drift) {
+    HumanoidForwardConfig cfg;
+    cfg.init_noise = 0.0;
+    cfg.max_drift = max_drift;
+    auto env = make_humanoid_forward_env(ch, walk, cfg);
+    std::mt19937_64 rng(5);
+    env->reset(rng);
+    const StartSource& source = env->start_source();
+    EXPECT_EQ(source.clip, walk);
+    const double t0 = source.time;
+    const Quat undo = heading_rotation(-heading_angle(walk->sample(t0).rot[0]));
+    const Vec3 start = env->world().root_position();
+    EXPECT_LT(env->drift(), 1e-9);  // starts on its clip's root
+    const Eigen::VectorXd hold = env->action_for(env->world().pose());
+    std::vector<double> drifts;
+    StepResult r;
+    do {
+      r = env->step(hold);
+      const Vec3 there = start + undo * (walk->sample(t0 + env->elapsed()).root_pos - walk->sample(t0).root_pos);
+      const Vec3 offset = env->world().root_position() - there;
+      EXPECT_NEAR(env->drift(), std::hypot(offset.x(), offset.y()), 1e-9);
+      drifts.push_back(env->drift());
+    } while (!r.done() && drifts.size() < 300);
+    return std::pair(r.termination, drifts);
+  };
+  const auto [ended, drifts] = run(0.1);
+  EXPECT_EQ(ended, Termination::Drift);
+  EXPECT_TRUE(is_failure(ended));
+  EXPECT_GT(drifts.back(), 0.1);
+  for (std::size_t i = 0; i + 1 < drifts.size(); ++i) EXPECT_LE(drifts[i], 0.1) << i;
+  const auto [ended_without, drifts_without] = run(0.0);
+  EXPECT_NE(ended_without, Termination::Drift);
+  ASSERT_GT(drifts_without.size(), drifts.size());
+  for (std::size_t i = 0; i < drifts.size(); ++i) EXPECT_DOUBLE_EQ(drifts_without[i], drifts[i]) << i;
+  // A start set directly (evaluation's) has no source: nothing to drift from.
+  HumanoidForwardConfig cfg;
+  cfg.max_drift = 0.3;
+  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  env->reset(env->state_on_clip(*walk, 0.2));
+  EXPECT_EQ(env->start_source().clip, nullptr);
+  env->step(env->action_for(walk->sample(0.0)));
+  EXPECT_EQ(env->drift(), 0.0);
+}
+
+TEST(HumanoidForward, MaxDriftNeedsMocapStarts) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  HumanoidForwardConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.max_drift = 0.5;
+  try {
+    make_humanoid_forward_env(ch, nullptr, cfg);
+    FAIL() << "max_drift without a clip to measure against";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("max_drift"), std::string::npos) << e.what();
+  }
+  const YamlReader r("test.yaml");
+  const std::string message = factory_error(r, "{name: humanoid_forward, init: fixed,\n max_drift: 0.5}");
+  EXPECT_NE(message.find("test.yaml:2"), std::string::npos) << message;
+  EXPECT_NE(message.find("'env.max_drift'"), std::string::npos) << message;
+  EXPECT_NE(factory_error(r, "{name: humanoid_forward, max_drift: -1}").find("max_drift"), std::string::npos);
+}

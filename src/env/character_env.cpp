@@ -143,6 +143,7 @@ Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   time_ = init.time;
   elapsed_ = 0.0;
   clip_left_ = init.clip_left;
+  source_ = init.source;
   history_.clear();
   // Past poses are placed kinematically only to read their link frames, before the real start.
   const auto keep = static_cast<std::size_t>(obs_.link_history() - 1);
@@ -202,8 +203,10 @@ bool CharacterEnv::below_reference() const {
 }
 
 double CharacterEnv::drift() const {
-  if (!reference_) return 0.0;
-  return (world_.root_position() - reference_->sample(time_).root_pos).head<2>().norm();
+  if (reference_) return (world_.root_position() - reference_->sample(time_).root_pos).head<2>().norm();
+  if (!source_.clip) return 0.0;
+  const Vec3 there = source_.place(source_.clip->sample(source_.time + elapsed_).root_pos);
+  return (world_.root_position() - there).head<2>().norm();
 }
 
 Termination CharacterEnv::check_termination() const {

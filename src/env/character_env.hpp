@@ -32,7 +32,8 @@ struct CharacterEnvConfig {
   double fall_height = 0.0;
   // > 0: the episode ends as Drift (a failure) once the root is more than this many metres from
   // the reference's, horizontally: a tracking policy that falls behind a fast clip loses the rest
-  // of the episode instead of trotting on in place (MimicKit's pose termination). Needs a reference.
+  // of the episode instead of trotting on in place (MimicKit's pose termination). Needs a reference,
+  // or starts that name the clip they were drawn from (InitState::source).
   double max_drift = 0.0;
   double max_seconds = 20.0;  // TimeLimit
   TerrainSpec terrain;             // flat by default; every kind starts flat around the origin
@@ -45,12 +46,23 @@ struct CharacterEnvConfig {
 // 004: the discriminator sees frames t-3...t+1 from the first step on); empty: the start repeats.
 // `clip_left`: seconds after which the episode ends as ClipEnd, for starts drawn from a non-cyclic
 // clip that is not the env's reference (seed 004 ends a kick where its clip ends).
+// `source`: for a start drawn from a clip that is not the env's reference, that clip, the time on
+// it and the rigid move that placed it (place_at_track_start): max_drift then measures the root
+// against the clip's root played on from there, moved the same way. Empty: against the reference.
+struct StartSource {
+  std::shared_ptr<const Clip> clip;
+  double time = 0.0;
+  Quat turn = Quat::Identity();  // about the vertical, then
+  Vec3 offset = Vec3::Zero();    // a shift
+  Vec3 place(const Vec3& p) const { return turn * p + offset; }
+};
 struct InitState {
   Pose pose;
   PoseVelocity velocity;
   double time = 0.0;
   std::vector<Pose> past;
   double clip_left = std::numeric_limits<double>::infinity();
+  StartSource source = {};
 };
 // The clip's state at `t`, with the `past` poses at t - past * dt, ..., t - dt (before the clip's
 // start a wrapping clip wraps, others hold their first frame).
@@ -109,8 +121,10 @@ class CharacterEnv : public Env {
   bool fall_contact() const;
   // The root below fall_height times the reference's root height (false without either).
   bool below_reference() const;
-  // The root's horizontal distance from the reference's at the current clip time (0 without one).
+  // The root's horizontal distance from the reference's at the current clip time, or else from the
+  // start's source clip played on from the start (0 without either).
   double drift() const;
+  const StartSource& start_source() const { return source_; }  // the episode's start's
   // The projectile launcher (null unless config().projectiles.enabled); its stats are per episode.
   const ProjectileLauncher* projectiles() const { return launcher_.get(); }
   ProjectileLauncher* projectiles() { return launcher_.get(); }
@@ -141,6 +155,7 @@ class CharacterEnv : public Env {
   std::unique_ptr<ProjectileLauncher> launcher_;
   double time_ = 0.0, elapsed_ = 0.0;
   double clip_left_ = std::numeric_limits<double>::infinity();  // the start's InitState::clip_left
+  StartSource source_;                                           // and its source
   double max_step_reward_ = 0.0;
 };
 

@@ -91,6 +91,9 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
   c.fall_links = s.texts("fall_links", c.fall_links);
+  c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
+  if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
+    reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
   c.observations.names = s.texts("observations", c.observations.names);
   c.observations.link_history = static_cast<int>(s.integer("link_history", c.observations.link_history, 1, 64));
   c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? HumanoidForwardConfig::Goal::Heading : HumanoidForwardConfig::Goal::None;

@@ -23,6 +23,9 @@ InitState place_at_track_start(InitState s) {
   // Root velocities are in the world frame; joint velocities are in their own frames and stay.
   s.velocity.root_lin = undo * s.velocity.root_lin;
   s.velocity.root_ang = undo * s.velocity.root_ang;
+  // The source clip's root is moved as the start was, after whatever placed it before.
+  s.source.turn = (undo * s.source.turn).normalized();
+  s.source.offset = undo * (s.source.offset - shift);
   return s;
 }
 
@@ -57,6 +60,9 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const std
     fail("goal_speed and goal_weight must be non-negative and goal_period positive");
   if (cfg.init == HumanoidForwardConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
+  if (!(cfg.max_drift >= 0) || !std::isfinite(cfg.max_drift)) fail("max_drift must be a non-negative number");
+  if (cfg.max_drift > 0 && cfg.init != HumanoidForwardConfig::Init::Mocap)
+    fail("max_drift measures against the clip a start was drawn from, so it needs mocap starts");
   for (const auto& clip : clips) {
     if (!clip) fail("a clip of the list is missing");
     if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
@@ -67,15 +73,16 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const std
 
 // A start time uniform over all clips' frames together (seed 004's integrated learning draws
 // poses uniformly from the collection), as the clip and the time on it.
-std::pair<const Clip*, double> draw_clip_time(std::span<const std::shared_ptr<const Clip>> clips, std::mt19937_64& rng) {
+std::pair<std::shared_ptr<const Clip>, double> draw_clip_time(std::span<const std::shared_ptr<const Clip>> clips,
+                                                              std::mt19937_64& rng) {
   double total = 0;
   for (const auto& c : clips) total += c->duration();
   double t = std::uniform_real_distribution<double>(0.0, total)(rng);
   for (const auto& c : clips) {
-    if (t < c->duration()) return {c.get(), t};
+    if (t < c->duration()) return {c, t};
     t -= c->duration();
   }
-  return {clips.back().get(), clips.back()->duration()};  // t == total after rounding
+  return {clips.back(), clips.back()->duration()};  // t == total after rounding
 }
 
 // CharacterEnv does not keep the action or the root's position before a step: this keeps both
@@ -187,6 +194,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   env_cfg.max_seconds = cfg.max_seconds;
   env_cfg.projectiles = cfg.projectiles;
   env_cfg.fall_links = cfg.fall_links;
+  env_cfg.max_drift = cfg.max_drift;
   // The clips are not the env's reference: they supply starts (and a non-cyclic one's end), not
   // the phase a reference would (nothing is tracked).
   auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
@@ -198,7 +206,9 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
     env->set_init_sampler([clips, sk, noise, self](std::mt19937_64& rng) {
       const int group = self->start_group();
       const auto [clip, when] = group < 0 ? draw_clip_time(clips, rng) : draw_clip_time(std::span(clips).subspan(static_cast<std::size_t>(group), 1), rng);
-      InitState s = place_at_track_start(self->state_on_clip(*clip, when));
+      InitState s = self->state_on_clip(*clip, when);
+      s.source = StartSource{clip, when};
+      s = place_at_track_start(std::move(s));
       s.time = 0.0;
       if (clip->loop != LoopMode::Wrap) s.clip_left = clip->duration() - when;  // seed 004: a kick ends with its clip
       perturb_joints(s.pose, sk, noise, rng);

@@ -36,6 +36,12 @@ struct HumanoidForwardConfig {
   // neck), which lets a policy sit on its thighs and shuffle; seed 004 §5.2 ends a walk at any
   // contact but the feet's.
   std::vector<std::string> fall_links;
+  // > 0: an episode also ends, as a failure (Drift), once the root is more than this many metres
+  // (horizontally) from the root of the clip its start was drawn from, played on from the start
+  // time and placed as the start was. Mocap starts only. A policy that stands in a punch's guard
+  // while the clip steps forward otherwise earns the full episode: a state-only discriminator has no
+  // phase to tell the guard from the clip's first frames.
+  double max_drift = 0.0;
   // The policy's input: proprioception, as the paper's RL runs (joint angles and velocities, root
   // velocity, velocimeter, gyro, uprightness, end effectors). No phase: nothing is tracked.
   // Mocap starts fill a "links" history with the clip's poses before the start.
@@ -73,7 +79,7 @@ double goal_heading(const CharacterEnv& env);
 void set_goal_heading(CharacterEnv& env, double yaw);
 
 // `s` moved to the start of the track: root over the origin facing +X, its height kept, its
-// velocities and past poses turned with it.
+// velocities, past poses and source clip's placement turned with it.
 InitState place_at_track_start(InitState s);
 
 }  // namespace mimic
