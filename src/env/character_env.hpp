@@ -41,14 +41,9 @@ struct CharacterEnvConfig {
   ProjectileSpec projectiles;      // seed 004's projectile test when enabled
 };
 
-// Where an episode starts: a pose, its velocities, and the time on the reference clip. `past`:
-// poses one control step apart before `pose`, oldest first, that seed the "links" history (seed
-// 004: the discriminator sees frames t-3...t+1 from the first step on); empty: the start repeats.
-// `clip_left`: seconds after which the episode ends as ClipEnd, for starts drawn from a non-cyclic
-// clip that is not the env's reference (seed 004 ends a kick where its clip ends).
-// `source`: for a start drawn from a clip that is not the env's reference, that clip, the time on
-// it and the rigid move that placed it (place_at_track_start): max_drift then measures the root
-// against the clip's root played on from there, moved the same way. Empty: against the reference.
+// The clip a start was drawn from when it is not the env's reference, the time on it, and the
+// rigid move that placed the start (place_at_track_start): max_drift measures the root against
+// that clip's root played on from there, moved the same way.
 struct StartSource {
   std::shared_ptr<const Clip> clip;
   double time = 0.0;
@@ -56,6 +51,13 @@ struct StartSource {
   Vec3 offset = Vec3::Zero();    // a shift
   Vec3 place(const Vec3& p) const { return turn * p + offset; }
 };
+
+// Where an episode starts: a pose, its velocities, and the time on the reference clip. `past`:
+// poses one control step apart before `pose`, oldest first, that seed the "links" history (seed
+// 004: the discriminator sees frames t-3...t+1 from the first step on); empty: the start repeats.
+// `clip_left`: seconds after which the episode ends as ClipEnd, for starts drawn from a non-cyclic
+// clip that is not the env's reference (seed 004 ends a kick where its clip ends). `source`: where
+// such a start came from; empty: drift is measured against the reference, if any.
 struct InitState {
   Pose pose;
   PoseVelocity velocity;
