@@ -5,16 +5,55 @@
 #  - table/<clip>: the ten clips of seed 003 Table 1 with RSI (roll without early termination:
 #    its torso touches the ground by design);
 #  - dog_trot: the same objective on DeepMimic's dog (another body, seed 003 section 9);
-#  - backflip_{fsi,asi5,asi10,asi20}: with table/backflip (RSI), Table 2 and Fig. 12 on the backflip.
+#  - backflip_{fsi,asi5,asi10,asi20}: with table/backflip (RSI), Table 2 and Fig. 12 on the backflip;
+#  - walk_{fsi,asi10}: with table/walk (RSI), Table 2 on the walk.
+# Then the tables (mimic table) and learning curves (mimic plot) docs/tracking.md shows:
+# <out>/{table,backflip_init,walk_init}.md and <figures>/{tracking_skills,backflip_init,walk_init}_reward.png.
+# A run whose evaluation is already there is not trained again and one with a checkpoint is
+# resumed, so a stopped script picks up where it was.
 # Usage: scripts/tracking_table.sh [iterations per run (default 250: 1.02 M samples)] [out dir]
-# EVAL_ONLY=1 evaluates the runs already there again (after a change to mimic eval) instead.
+# EVAL_ONLY=1 evaluates the runs already there again (after a change to mimic eval) instead;
+# REPORT_ONLY=1 only writes the tables and figures; FIGURES=dir (default: out dir) takes the figures.
 set -euo pipefail
 iterations=${1:-250}
 out=${2:-runs/tracking_table}
 mimic=${MIMIC:-build/src/mimic}
 config=configs/humanoid_walk_tracking.yaml
 motions=deepmimic/motions
-mkdir -p "$out/table"
+figures=${FIGURES:-$out}
+mkdir -p "$out/table" "$figures"
+clips=(walk run backflip cartwheel jump kick punch roll spin spinkick)
+
+# init_report CLIP RUN...: the start-distribution comparison on CLIP, RSI being table/CLIP.
+init_report() {
+  local clip=$1 names=() runs=() run
+  shift
+  for run in "$@"; do
+    case $run in
+      table/*) names+=(RSI) ;;
+      *_fsi) names+=(FSI) ;;
+      *) names+=("ASI k = ${run##*_asi}") ;;
+    esac
+    runs+=("$out/$run")
+  done
+  "$mimic" table "${runs[@]/%/.json}" --names "${names[@]}" -o "$out/${clip}_init.md"
+  "$mimic" plot "${runs[@]}" --names "${names[@]}" --y reward --smooth 10 \
+    --title "$clip, start distributions: reward per step (max 1)" -o "$figures/${clip}_init_reward.png"
+}
+
+# The tables and learning curves of the runs in <out>.
+report() {
+  local runs=("${clips[@]/#/$out/table/}")
+  "$mimic" table "${runs[@]/%/.json}" "$out/dog_trot.json" --names "${clips[@]}" dog_trot -o "$out/table.md"
+  "$mimic" plot "${runs[@]}" --names "${clips[@]}" --y reward --smooth 10 \
+    --title "Tracking skills, $iterations iterations each: reward per step (max 1)" -o "$figures/tracking_skills_reward.png"
+  init_report backflip backflip_fsi table/backflip backflip_asi5 backflip_asi10 backflip_asi20
+  init_report walk walk_fsi table/walk walk_asi10
+}
+if [[ ${REPORT_ONLY:-0} == 1 ]]; then
+  report
+  exit
+fi
 
 # train NAME [--set ...]: one run and its evaluation, logged to <out>/NAME.log.
 train() {
@@ -25,8 +64,18 @@ train() {
       echo "$name: evaluation failed: see $out/$name.eval.log" >&2
     return
   fi
+  if [[ -f $out/$name.json ]]; then
+    echo "$name: evaluated already, not trained again"
+    return
+  fi
+  local start=("$config" --set iterations="$iterations" --set collect.threads=1 --set checkpoint_every=10 "$@")
+  if [[ -f $out/$name/checkpoint.pt ]]; then
+    start=(--resume)
+  else
+    rm -rf "${out:?}/$name"
+  fi
   {
-    "$mimic" train "$config" -o "$out/$name" --set iterations="$iterations" --set collect.threads=1 --set checkpoint_every=10 "$@" &&
+    "$mimic" train "${start[@]}" -o "$out/$name" &&
       "$mimic" eval "$out/$name" --episodes 10 --trials 20 --json "$out/$name.json"
   } > "$out/$name.log" 2>&1 || echo "$name failed: see $out/$name.log" >&2
 }
@@ -37,7 +86,8 @@ slot() {
 }
 
 clip() { echo "env.clip=$motions/humanoid3d_$1.txt"; }
-for c in walk run backflip cartwheel jump kick punch roll spin spinkick; do
+asi() { echo "init={kind: adaptive, components: $1, episodes: 500}"; }
+for c in "${clips[@]}"; do
   slot
   if [[ $c == roll ]]; then
     train "table/$c" --set "$(clip "$c")" --set env.early_termination=false &
@@ -51,7 +101,12 @@ slot
 train backflip_fsi --set "$(clip backflip)" --set env.init=fixed &
 for k in 5 10 20; do
   slot
-  train "backflip_asi$k" --set "$(clip backflip)" --set "init={kind: adaptive, components: $k, episodes: 500}" &
+  train "backflip_asi$k" --set "$(clip backflip)" --set "$(asi "$k")" &
 done
+slot
+train walk_fsi --set env.init=fixed &
+slot
+train walk_asi10 --set "$(asi 10)" &
 wait
+report
 echo "done: $out"
