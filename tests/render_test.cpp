@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "core/error.hpp"
@@ -108,6 +109,19 @@ TEST(LineChart, DrawsEverySeriesWithGapsAtMissingValues) {
   EXPECT_NE(svg.find(">b</text>"), std::string::npos);
   c.series = {{"empty", {0}, {NAN}}};
   EXPECT_THROW(mimic::line_chart_svg(c), mimic::Error);
+}
+
+TEST(LineChart, TwelveSeriesAreDrawnInTwelveDifferentStyles) {
+  mimic::LineChart c;
+  for (int k = 0; k < 12; ++k) c.series.push_back({"s" + std::to_string(k), {0, 1}, {0, double(k)}});
+  const std::string svg = mimic::line_chart_svg(c);
+  std::set<std::string> styles;  // a polyline's attributes before its points
+  for (std::size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1))
+    styles.insert(svg.substr(at, svg.find("points=", at) - at));
+  EXPECT_EQ(styles.size(), 12u);
+  // Series 10 and 11 reuse the first two colours, dashed, and so do their legend lines.
+  EXPECT_EQ(occurrences(svg, "stroke='#1f77b4' stroke-width='1.6' stroke-dasharray"), 1u);
+  EXPECT_EQ(occurrences(svg, "stroke='#d62728' stroke-width='3' stroke-dasharray"), 1u);
 }
 
 TEST(LineChart, ShadesABandUnderTheLinesAndFitsTheAxesToIt) {
