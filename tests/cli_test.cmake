@@ -330,6 +330,12 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${LAST_OUT}" "| first | humanoid3d_walk | 0.00 M | ")
   file(READ ${OUT}/table.md table_md)
   expect_in("${table_md}" "| second | humanoid3d_walk |")
+  # Progress (how much of the clip's ground was covered) is its own column; a clip that stays put has none.
+  file(WRITE ${OUT}/progress.json "{\"run\": \"r\", \"episode_length\": 37, \"imitation\": {\"clip\": \"c\", \"trials\": 20, \"error_mean\": 0.2294, \"error_std\": 0.136, \"falls\": 0, \"down\": 1, \"normalised_return\": 0.5561, \"progress\": 0.712}}")
+  file(WRITE ${OUT}/put.json "{\"run\": \"s\", \"imitation\": {\"clip\": \"c\", \"trials\": 20, \"falls\": 0, \"progress\": null}}")
+  run_ok(table ${OUT}/progress.json ${OUT}/put.json)
+  expect_in("${LAST_OUT}" "| r | c | - | - | 0.229 ± 0.136 | 0.556 | 0 / 20 | 1 / 20 | 37 | 0.71 |")
+  expect_in("${LAST_OUT}" "| s | c | - | - | - | - | 0 / 20 | - | - | - |")
   file(WRITE ${OUT}/bad.json "{\"episodes\": 2}")
   run_fails("bad.json" table ${OUT}/bad.json)
   # A run without a simulated character cannot be compared with a clip.

@@ -34,7 +34,7 @@ std::vector<double> smooth(const std::vector<double>& v, int window) {
 // The figures of one `mimic eval --json` file that the reports use (NaN where absent or null).
 struct EvalSummary {
   std::string run, clip;
-  double error_mean = NAN, error_std = NAN, normalised_return = NAN, episode_length = NAN, return_mean = NAN;
+  double error_mean = NAN, error_std = NAN, normalised_return = NAN, progress = NAN, episode_length = NAN, return_mean = NAN;
   long falls = -1, down = -1, trials = 0;
   std::vector<double> masses, frames, frames_std, max_frames;  // robustness (NaN: not in the file)
 };
@@ -58,6 +58,7 @@ EvalSummary read_eval_json(const std::filesystem::path& path) {
     s.error_mean = number_or_nan(r, im, "error_mean", "\"imitation\"");
     s.error_std = number_or_nan(r, im, "error_std", "\"imitation\"");
     s.normalised_return = number_or_nan(r, im, "normalised_return", "\"imitation\"");
+    s.progress = number_or_nan(r, im, "progress", "\"imitation\"");  // null for a clip that stays put
     s.falls = r.integer(r.member(im, "falls", "\"imitation\""), "\"imitation\" \"falls\"");
     if (const YAML::Node d = im["down"]) s.down = r.integer(d, "\"imitation\" \"down\"");  // older files have none
     s.trials = r.integer(r.member(im, "trials", "\"imitation\""), "\"imitation\" \"trials\"");
@@ -185,16 +186,17 @@ void add_report_commands(CLI::App& app) {
     const TableArgs& a = *table_args;
     if (!a.names.empty() && a.names.size() != a.inputs.size()) throw Error("--names: give one name per file");
     std::string text =
-        "| run | clip | samples | wall | imitation error (m) | normalised return | falls | down | episode length |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+        "| run | clip | samples | wall | imitation error (m) | normalised return | falls | down | episode length | progress |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < a.inputs.size(); ++i) {
       const EvalSummary e = read_eval_json(a.inputs[i]);
       const auto [samples, wall] = budget_of(e.run);
       const std::string error = std::isfinite(e.error_mean) ? fmt::format("{:.3f} ± {:.3f}", e.error_mean, e.error_std) : "-";
       const std::string falls = e.falls >= 0 ? fmt::format("{} / {}", e.falls, e.trials) : "-";
       const std::string down = e.down >= 0 ? fmt::format("{} / {}", e.down, e.trials) : "-";
-      text += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", a.names.empty() ? e.run : a.names[i], e.clip.empty() ? "-" : e.clip,
-                          samples, wall, error, cell(e.normalised_return, "{:.3f}"), falls, down, cell(e.episode_length, "{:.0f}"));
+      text += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", a.names.empty() ? e.run : a.names[i],
+                          e.clip.empty() ? "-" : e.clip, samples, wall, error, cell(e.normalised_return, "{:.3f}"), falls, down,
+                          cell(e.episode_length, "{:.0f}"), cell(e.progress, "{:.2f}"));
     }
     fmt::print("{}", text);
     if (!a.out.empty()) write_file_atomic(a.out, text);
