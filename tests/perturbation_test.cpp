@@ -110,6 +110,14 @@ TEST(Projectile, FliesStraightAtTheSetSpeedFromTheSetDistanceAndHitsTheChest) {
   const Vec3 dir(1, 0, 0);  // from the front
   const int k = launcher.launch(w, aim, dir);
   const int cube = launcher.body(k);
+  // Seed 004 section 6.4: a cube 0.2 m on a side (box half-sizes 0.1), of the set mass, at 0.2 m/s.
+  EXPECT_DOUBLE_EQ(spec.size, 0.2);
+  EXPECT_DOUBLE_EQ(spec.speed, 0.2);
+  const int cube_geom = m->body_geomadr[cube];
+  EXPECT_EQ(m->body_geomnum[cube], 1);
+  EXPECT_EQ(m->geom_type[cube_geom], mjGEOM_BOX);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(m->geom_size[3 * cube_geom + i], 0.1, 1e-12);
+  EXPECT_NEAR(m->body_mass[cube], 2.0, 1e-9);
   mj_forward(m, w.data());
   const Vec3 start = body_pos(w, cube);
   EXPECT_NEAR((start - aim).norm(), spec.distance, 1e-9);
