@@ -1,4 +1,5 @@
 // Rendering: offscreen frames and videos of the expected length.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,8 +121,10 @@ TEST(LineChart, TwelveSeriesAreDrawnInTwelveDifferentStyles) {
     styles.insert(svg.substr(at, svg.find("points=", at) - at));
   EXPECT_EQ(styles.size(), 12u);
   // Series 10 and 11 reuse the first two colours, dashed, and so do their legend lines.
-  EXPECT_EQ(occurrences(svg, "stroke='#1f77b4' stroke-width='1.6' stroke-dasharray"), 1u);
-  EXPECT_EQ(occurrences(svg, "stroke='#d62728' stroke-width='3' stroke-dasharray"), 1u);
+  for (const char* colour : {"#1f77b4", "#d62728"}) {
+    EXPECT_EQ(occurrences(svg, fmt::format("stroke='{}' stroke-width='1.6' stroke-dasharray", colour)), 1u) << colour;
+    EXPECT_EQ(occurrences(svg, fmt::format("stroke='{}' stroke-width='3' stroke-dasharray", colour)), 1u) << colour;
+  }
 }
 
 TEST(LineChart, ShadesABandUnderTheLinesAndFitsTheAxesToIt) {
