@@ -58,6 +58,24 @@ struct EvalArgs {
   std::uint64_t seed = 12345;
 };
 
+// The `count` links with the largest errors, largest first: "right_wrist 0.312, ...".
+std::string largest_links(const ImitationReport& r, std::size_t count) {
+  std::vector<std::size_t> order(r.link_errors.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.link_errors[a] > r.link_errors[b]; });
+  std::string out;
+  for (std::size_t i = 0; i < std::min(count, order.size()); ++i)
+    out += fmt::format("{}{} {:.3f}", i ? ", " : "", r.link_names[order[i]], r.link_errors[order[i]]);
+  return out + " m";
+}
+
+std::string link_errors_json(const ImitationReport& r) {
+  std::string out = "{";
+  for (std::size_t j = 0; j < r.link_errors.size(); ++j)
+    out += fmt::format("{}{}: {}", j ? ", " : "", json_string(r.link_names[j]), json_number(r.link_errors[j]));
+  return out + "}";
+}
+
 // The simulated character a run's environment drives: a behaviour-context env's through the env
 // it wraps. Null when there is none.
 CharacterEnv* character_of(Env& env) {
@@ -226,6 +244,9 @@ void evaluate(const EvalArgs& args) {
     spdlog::info("  error           {:.3f} +- {:.3f} m (mean over links of the world position error); per trial: median {:.3f}, "
                  "largest {:.3f} m", r.error_mean(), r.error_std(), median_of(r.trial_errors),
                  *std::max_element(r.trial_errors.begin(), r.trial_errors.end()));
+    spdlog::info("  pose error      {:.3f} +- {:.3f} m (the same with the root's offset taken out: posture, not place)",
+                 r.pose_error_mean(), r.pose_error_std());
+    spdlog::info("  largest links   {}", largest_links(r, 5));
     spdlog::info("  falls           {} of {} full episodes; down (a fall, or the root below half the reference's for {} frames) {}", r.falls,
                  r.trial_errors.size(), kLyingFrames, r.down);
     if (!r.trial_returns.empty()) spdlog::info("  normalised return {:.3f} (full episodes; 1 = perfect tracking)", r.normalised_return_mean());
@@ -234,10 +255,13 @@ void evaluate(const EvalArgs& args) {
                    r.trial_progress.size());
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
                         "\"trial_errors\": {}, \"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}, "
-                        "\"trial_progress\": {}{}}}",
+                        "\"trial_progress\": {}, \"pose_error_mean\": {}, \"pose_error_std\": {}, \"trial_pose_errors\": {}, "
+                        "\"link_errors\": {}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
                         json_number(r.error_std()), json_numbers(r.trial_errors), r.falls, r.down,
                         json_number(r.normalised_return_mean()), json_number(r.progress_mean()), json_numbers(r.trial_progress),
+                        json_number(r.pose_error_mean()), json_number(r.pose_error_std()), json_numbers(r.trial_pose_errors),
+                        link_errors_json(r),
                         contexts ? fmt::format(", \"context\": {}", args.context) : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");

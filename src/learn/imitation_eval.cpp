@@ -27,6 +27,22 @@ double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<Li
   return sum / static_cast<double>(sim.size());
 }
 
+std::vector<double> link_distances(const LinkFrames& sim, const LinkFrames& ref) {
+  link_position_error(sim, ref);  // the same checks
+  std::vector<double> d(sim.joint_pos.size());
+  for (std::size_t j = 0; j < d.size(); ++j) d[j] = (sim.joint_pos[j] - ref.joint_pos[j]).norm();
+  return d;
+}
+
+double pose_error(const LinkFrames& sim, const LinkFrames& ref) {
+  if (sim.joint_pos.size() != ref.joint_pos.size() || sim.joint_pos.size() < 2)
+    throw Error("pose error: " + std::to_string(sim.joint_pos.size()) + " simulated links against " +
+                std::to_string(ref.joint_pos.size()) + " reference links (needs two or more)");
+  const Vec3 offset = sim.joint_pos[0] - ref.joint_pos[0];
+  double sum = 0;
+  for (std::size_t j = 1; j < sim.joint_pos.size(); ++j) sum += (sim.joint_pos[j] - ref.joint_pos[j] - offset).norm();
+  return sum / static_cast<double>(sim.joint_pos.size() - 1);
+}
 
 double ImitationReport::error_mean() const { return mean_of(trial_errors); }
 double ImitationReport::error_std() const { return std_of(trial_errors); }
@@ -35,6 +51,8 @@ double RobustnessReport::std() const { return std_of(frames); }
 
 double ImitationReport::normalised_return_mean() const { return mean_of(trial_returns); }
 double ImitationReport::progress_mean() const { return mean_of(trial_progress); }
+double ImitationReport::pose_error_mean() const { return mean_of(trial_pose_errors); }
+double ImitationReport::pose_error_std() const { return std_of(trial_pose_errors); }
 
 double progress_along(const Vec3& sim_displacement, const Vec3& ref_displacement) {
   const Eigen::Vector2d sim = sim_displacement.head<2>(), ref = ref_displacement.head<2>();
@@ -56,6 +74,9 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
 
   ImitationReport report;
   report.cycle_seconds = cycle_steps / hz;
+  const std::size_t num_links = static_cast<std::size_t>(sk.num_joints());
+  for (const Joint& j : sk.joints) report.link_names.push_back(j.name);
+  report.link_errors.assign(num_links, 0.0);
   FrameHistory frames(history);
   std::vector<LinkFrames> sim_frames, ref_frames;
   for (int i = 0; i < trials; ++i) {
@@ -96,6 +117,13 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
       }
     }
     report.trial_errors.push_back(trajectory_error(sim_frames, ref_frames));
+    double pose = 0;
+    for (std::size_t f = 0; f < sim_frames.size(); ++f) {
+      pose += pose_error(sim_frames[f], ref_frames[f]);
+      const std::vector<double> d = link_distances(sim_frames[f], ref_frames[f]);
+      for (std::size_t j = 0; j < num_links; ++j) report.link_errors[j] += d[j] / (static_cast<double>(sim_frames.size()) * trials);
+    }
+    report.trial_pose_errors.push_back(pose / static_cast<double>(sim_frames.size()));
     if (fell) ++report.falls;
     if (fell || lay) ++report.down;
     if (max_step > 0) report.trial_returns.push_back(ret / (episode_steps * max_step));

@@ -15,6 +15,7 @@
 // fell and its error grows, as the paper's error of a failed imitation does.
 // Torch-free: the policy is any function from a stacked input to an action.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "env/character_env.hpp"
@@ -25,6 +26,14 @@ namespace mimic {
 double link_position_error(const LinkFrames& sim, const LinkFrames& ref);
 // Mean of link_position_error over the frames of two trajectories of equal length.
 double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<LinkFrames>& ref);
+// Per link (joint order): |sim - ref| in metres. Throws as link_position_error.
+std::vector<double> link_distances(const LinkFrames& sim, const LinkFrames& ref);
+// Posture without place: the mean over the links other than the root (joint 0) of
+// |(sim_j - sim_root) - (ref_j - ref_root)|, the world error with the root's offset taken out (not
+// its rotation: a turned torso still counts). A policy that lags or strays in the clip's posture
+// scores near 0 here and high on link_position_error; a bent posture scores high on both.
+// Throws Error with fewer than two links or differing counts.
+double pose_error(const LinkFrames& sim, const LinkFrames& ref);
 
 // Consecutive frames a character must lie for to count as down (DESIGN.md section 5's robustness rule).
 constexpr int kLyingFrames = 10;
@@ -39,6 +48,11 @@ struct ImitationReport {
   std::vector<double> trial_errors;   // per trial: the error averaged over its cycle
   std::vector<double> trial_returns;  // per trial: normalised return (empty when not known)
   std::vector<double> trial_progress; // per trial whose reference moves: progress (above)
+  std::vector<double> trial_pose_errors;  // per trial: pose_error averaged over its cycle
+  // Per link (joint order; names in link_names): its distance averaged over each trial's cycle,
+  // then over trials, so their mean over links is error_mean(). Says which links carry the error.
+  std::vector<double> link_errors;
+  std::vector<std::string> link_names;
   int falls = 0;                      // trials whose episode ended in a fall (the env's termination rule)
   // Trials whose character lay on the ground in the full episode: a fall, or its root below half
   // the reference's root height for `kLyingFrames` consecutive frames. Catches a policy that lies
@@ -49,6 +63,8 @@ struct ImitationReport {
   double error_std() const;
   double normalised_return_mean() const;  // NaN when not known
   double progress_mean() const;           // NaN when the reference does not move
+  double pose_error_mean() const;
+  double pose_error_std() const;
 };
 
 // Runs `trials` episodes of `env` from the reference `clip` (the env's own reference when null)

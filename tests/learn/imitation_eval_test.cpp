@@ -48,6 +48,29 @@ TEST(ImitationError, AveragedOverATrajectoryWithAKnownOffset) {
   EXPECT_THROW(trajectory_error(sim, ref), Error);
 }
 
+TEST(ImitationError, PoseErrorTakesOutTheRootsOffsetAndLinkDistancesSplitTheMean) {
+  const LinkFrames ref = links({Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 0, 2)});
+  // The whole body 0.5 m off (3-4-5): 0.5 in the world, 0 in posture.
+  const LinkFrames moved = links({Vec3(0.3, 0.4, 1), Vec3(1.3, 0.4, 1), Vec3(0.3, 0.4, 2)});
+  EXPECT_NEAR(link_position_error(moved, ref), 0.5, 1e-12);
+  EXPECT_NEAR(pose_error(moved, ref), 0.0, 1e-12);
+  // The root in place, the second link 0.6 m up, the third 0.2 m aside: posture (0.6 + 0.2) / 2
+  // over the two links other than the root; world (0 + 0.6 + 0.2) / 3.
+  const LinkFrames bent = links({Vec3(0, 0, 1), Vec3(1, 0, 1.6), Vec3(0, 0.2, 2)});
+  EXPECT_NEAR(pose_error(bent, ref), 0.4, 1e-12);
+  const std::vector<double> d = link_distances(bent, ref);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_NEAR(d[0], 0.0, 1e-12);
+  EXPECT_NEAR(d[1], 0.6, 1e-12);
+  EXPECT_NEAR(d[2], 0.2, 1e-12);
+  EXPECT_NEAR(link_position_error(bent, ref), (d[0] + d[1] + d[2]) / 3, 1e-12);
+  // Only the root displaced (0.1 m down): every other link is 0.1 m off relative to it.
+  EXPECT_NEAR(pose_error(links({Vec3(0, 0, 0.9), Vec3(1, 0, 1), Vec3(0, 0, 2)}), ref), 0.1, 1e-12);
+  EXPECT_THROW(pose_error(links({Vec3::Zero()}), links({Vec3::Zero()})), Error);  // a root alone has no posture
+  EXPECT_THROW(pose_error(moved, links({Vec3::Zero(), Vec3::Zero()})), Error);
+  EXPECT_THROW(link_distances(moved, links({Vec3::Zero()})), Error);
+}
+
 TEST(ImitationError, ProgressIsTheProjectionOnTheReferencesHorizontalDisplacement) {
   EXPECT_DOUBLE_EQ(progress_along(Vec3(1, 1, 0.3), Vec3(2, 0, -0.5)), 0.5);  // heights ignored
   EXPECT_DOUBLE_EQ(progress_along(Vec3(-1, 0, 0), Vec3(2, 0, 0)), -0.5);     // the wrong way
@@ -93,6 +116,18 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
   ASSERT_EQ(bad.trial_progress.size(), 4u);
   EXPECT_GT(bad.progress_mean(), 0.0);
   EXPECT_LT(bad.progress_mean(), 0.6);
+  // Per link: one per joint, named, averaging to the error; the root's is the root's own distance.
+  ASSERT_EQ(bad.link_errors.size(), static_cast<std::size_t>(ch.skeleton.num_joints()));
+  ASSERT_EQ(bad.link_names.size(), bad.link_errors.size());
+  EXPECT_EQ(bad.link_names[0], ch.skeleton.joints[0].name);
+  double sum = 0;
+  for (double link : bad.link_errors) sum += link;
+  EXPECT_NEAR(sum / static_cast<double>(bad.link_errors.size()), bad.error_mean(), 1e-9);
+  // Posture: the reference walks away, which the pose error takes out; what is left is the
+  // fallen character's posture, and following the clip keeps it small.
+  ASSERT_EQ(bad.trial_pose_errors.size(), 4u);
+  EXPECT_LT(bad.pose_error_mean(), bad.error_mean());
+  EXPECT_LT(good.pose_error_mean(), bad.pose_error_mean());
   // A clip that does not fit, and no clip at all, are errors.
   Clip other = *walk;
   other.skeleton.joints.pop_back();
