@@ -256,12 +256,12 @@ void evaluate(const EvalArgs& args) {
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
                         "\"trial_errors\": {}, \"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}, "
                         "\"trial_progress\": {}, \"pose_error_mean\": {}, \"pose_error_std\": {}, \"trial_pose_errors\": {}, "
-                        "\"link_errors\": {}{}}}",
+                        "\"link_errors\": {}, \"step_errors\": {}, \"step_pose_errors\": {}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
                         json_number(r.error_std()), json_numbers(r.trial_errors), r.falls, r.down,
                         json_number(r.normalised_return_mean()), json_number(r.progress_mean()), json_numbers(r.trial_progress),
                         json_number(r.pose_error_mean()), json_number(r.pose_error_std()), json_numbers(r.trial_pose_errors),
-                        link_errors_json(r),
+                        link_errors_json(r), json_numbers(r.step_errors), json_numbers(r.step_pose_errors),
                         contexts ? fmt::format(", \"context\": {}", args.context) : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");

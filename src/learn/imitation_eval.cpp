@@ -77,6 +77,9 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
   const std::size_t num_links = static_cast<std::size_t>(sk.num_joints());
   for (const Joint& j : sk.joints) report.link_names.push_back(j.name);
   report.link_errors.assign(num_links, 0.0);
+  report.step_errors.assign(static_cast<std::size_t>(cycle_steps), 0.0);
+  report.step_pose_errors.assign(static_cast<std::size_t>(cycle_steps), 0.0);
+  std::vector<int> step_trials(static_cast<std::size_t>(cycle_steps), 0);
   FrameHistory frames(history);
   std::vector<LinkFrames> sim_frames, ref_frames;
   for (int i = 0; i < trials; ++i) {
@@ -119,7 +122,11 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     report.trial_errors.push_back(trajectory_error(sim_frames, ref_frames));
     double pose = 0;
     for (std::size_t f = 0; f < sim_frames.size(); ++f) {
-      pose += pose_error(sim_frames[f], ref_frames[f]);
+      const double posture = pose_error(sim_frames[f], ref_frames[f]);
+      pose += posture;
+      report.step_errors[f] += link_position_error(sim_frames[f], ref_frames[f]);
+      report.step_pose_errors[f] += posture;
+      ++step_trials[f];
       const std::vector<double> d = link_distances(sim_frames[f], ref_frames[f]);
       for (std::size_t j = 0; j < num_links; ++j) report.link_errors[j] += d[j] / (static_cast<double>(sim_frames.size()) * trials);
     }
@@ -130,6 +137,15 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     const Vec3 ref_end = clip->sample(t0 + episode_steps / hz).root_pos;
     if (const double p = progress_along(sim_end - sim_start, ref_end - ref_start); std::isfinite(p)) report.trial_progress.push_back(p);
   }
+  // Sums to means over the trials that reached each step; steps no trial reached are dropped.
+  std::size_t reached = 0;
+  while (reached < step_trials.size() && step_trials[reached] > 0) {
+    report.step_errors[reached] /= step_trials[reached];
+    report.step_pose_errors[reached] /= step_trials[reached];
+    ++reached;
+  }
+  report.step_errors.resize(reached);
+  report.step_pose_errors.resize(reached);
   return report;
 }
 

@@ -53,6 +53,10 @@ struct ImitationReport {
   // then over trials, so their mean over links is error_mean(). Says which links carry the error.
   std::vector<double> link_errors;
   std::vector<std::string> link_names;
+  // Per control step of the cycle (step 1 first): the error and the pose error at that step,
+  // averaged over the trials that reach it. A start that goes wrong at once rises early; a
+  // policy off the clip's pace drifts up along the cycle.
+  std::vector<double> step_errors, step_pose_errors;
   int falls = 0;                      // trials whose episode ended in a fall (the env's termination rule)
   // Trials whose character lay on the ground in the full episode: a fall, or its root below half
   // the reference's root height for `kLyingFrames` consecutive frames. Catches a policy that lies

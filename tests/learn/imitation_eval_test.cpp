@@ -128,6 +128,15 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
   ASSERT_EQ(bad.trial_pose_errors.size(), 4u);
   EXPECT_LT(bad.pose_error_mean(), bad.error_mean());
   EXPECT_LT(good.pose_error_mean(), bad.pose_error_mean());
+  // Per step of the cycle: one value a step (the walk loops: every trial reaches every step),
+  // averaging to the error; the character holding still falls behind, so its error grows.
+  ASSERT_EQ(bad.step_errors.size(), static_cast<std::size_t>(std::lround(good.cycle_seconds * 30)));
+  ASSERT_EQ(bad.step_pose_errors.size(), bad.step_errors.size());
+  double steps = 0;
+  for (double step : bad.step_errors) steps += step;
+  EXPECT_NEAR(steps / static_cast<double>(bad.step_errors.size()), bad.error_mean(), 1e-9);
+  EXPECT_LT(bad.step_errors.front(), 0.05);  // one step after a start on the clip
+  EXPECT_GT(bad.step_errors.back(), 3 * bad.step_errors.front());
   // A clip that does not fit, and no clip at all, are errors.
   Clip other = *walk;
   other.skeleton.joints.pop_back();
