@@ -664,6 +664,15 @@ TEST(HumanoidForward, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
       const Vec3 there = start + undo * (walk->sample(t0 + env->elapsed()).root_pos - walk->sample(t0).root_pos);
       const Vec3 offset = env->world().root_position() - there;
       EXPECT_NEAR(env->drift(), std::hypot(offset.x(), offset.y()), 1e-9);
+      // The pose drawn as the ghost: the clip's, moved as the start was; its root is `there`, and
+      // its heading the clip's turn since the start (the start faces +x).
+      const std::optional<Pose> ghost = env->reference_pose();
+      EXPECT_TRUE(ghost.has_value());
+      if (ghost) {
+        EXPECT_LT((ghost->root_pos - there).norm(), 1e-9);
+        const double turned = heading_angle(walk->sample(t0 + env->elapsed()).rot[0]) - heading_angle(walk->sample(t0).rot[0]);
+        EXPECT_NEAR(std::remainder(heading_angle(ghost->rot[0]) - turned, 2 * kPi), 0.0, 1e-9);
+      }
       drifts.push_back(env->drift());
     } while (!r.done() && drifts.size() < 300);
     return std::pair(r.termination, drifts);
@@ -685,6 +694,7 @@ TEST(HumanoidForward, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
   EXPECT_EQ(env->start_source().clip, nullptr);
   env->step(env->action_for(walk->sample(0.0)));
   EXPECT_EQ(env->drift(), 0.0);
+  EXPECT_FALSE(env->reference_pose().has_value());
 }
 
 TEST(HumanoidForward, MaxDriftNeedsMocapStarts) {

@@ -54,11 +54,12 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   const int steps = static_cast<int>(std::lround(opts.seconds / control_dt));
   const int context_steps = std::max(1, static_cast<int>(std::lround(opts.context_seconds / control_dt)));
 
-  // The ghost: the reference pose at the env's clip time, in a second data of the same model.
+  // The ghost: the pose the character is measured against (CharacterEnv::reference_pose), in a
+  // second data of the same model.
   // A behaviour-context env draws its character through the env it wraps.
   const auto* character = dynamic_cast<const CharacterEnv*>(behaviours ? &behaviours->inner() : env.get());
-  if (opts.ghost && (!character || !character->reference()))
-    throw Error("--ghost needs an environment with a reference clip (e.g. tracking)");
+  if (opts.ghost && (!character || (!character->reference() && !character->start_source().clip)))
+    throw Error("--ghost needs an environment with a reference clip (tracking) or starts drawn from clips (init: mocap)");
   std::unique_ptr<mjData, void (*)(mjData*)> ghost(opts.ghost ? mj_makeData(env->physics_model()) : nullptr, mj_deleteData);
   OffscreenRenderer renderer(env->physics_model(), opts.width, opts.height);
   VideoWriter video(out, opts.width, opts.height, fps);
@@ -79,7 +80,10 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
     if (t % every == 0) {
       CameraSpec cam = opts.camera;
       cam.lookat = Vec3(smoothed.x(), smoothed.y(), opts.camera.lookat.z());
-      if (ghost) character->world().write_pose(character->reference()->sample(character->time()), ghost.get());
+      // A start without a clip (a fixed pose) has no ghost until an episode that starts on one.
+      if (ghost) {
+        if (const std::optional<Pose> ref = character->reference_pose()) character->world().write_pose(*ref, ghost.get());
+      }
       renderer.render(data, cam, rgb, ghost.get());
       video.write(rgb);
     }

@@ -209,6 +209,15 @@ double CharacterEnv::drift() const {
   return (world_.root_position() - there).head<2>().norm();
 }
 
+std::optional<Pose> CharacterEnv::reference_pose() const {
+  if (reference_) return reference_->sample(time_);
+  if (!source_.clip) return std::nullopt;
+  Pose p = source_.clip->sample(source_.time + elapsed_);
+  p.root_pos = source_.place(p.root_pos);
+  p.rot[0] = (source_.turn * p.rot[0]).normalized();
+  return p;
+}
+
 Termination CharacterEnv::check_termination() const {
   if (cfg_.early_termination && (fall_contact() || below_reference())) return Termination::Fall;
   if (cfg_.max_drift > 0 && drift() > cfg_.max_drift) return Termination::Drift;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "env/observations.hpp"
 #include "sim/perturbation.hpp"
@@ -127,6 +128,10 @@ class CharacterEnv : public Env {
   // start's source clip played on from the start (0 without either).
   double drift() const;
   const StartSource& start_source() const { return source_; }  // the episode's start's
+  // The pose the character is measured against now, as drift() measures the root: the reference's
+  // at the clip time, or else the start's source clip played on from the start and placed as the
+  // start was. None without either (what `mimic render --ghost` draws).
+  std::optional<Pose> reference_pose() const;
   // The projectile launcher (null unless config().projectiles.enabled); its stats are per episode.
   const ProjectileLauncher* projectiles() const { return launcher_.get(); }
   ProjectileLauncher* projectiles() { return launcher_.get(); }
