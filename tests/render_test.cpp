@@ -150,6 +150,21 @@ TEST(LineChart, LongLegendNamesWidenThePictureNotCutOff) {
   EXPECT_NE(mimic::line_chart_svg(c).find("width='880'"), std::string::npos);
 }
 
+TEST(LineChart, AMoreThanPlotHighLegendMakesThePictureTaller) {
+  auto chart = [](int n) {
+    mimic::LineChart c;
+    for (int k = 0; k < n; ++k) c.series.push_back({"s" + std::to_string(k), {0, 1}, {0, 1}});
+    return mimic::line_chart_svg(c);
+  };
+  EXPECT_NE(chart(17).find("height='420'"), std::string::npos);  // 40 + 20 + 18 * 17 + 50 = 416: the set height
+  EXPECT_NE(chart(18).find("height='434'"), std::string::npos);  // 40 + 20 + 18 * 18 + 50
+  // 30 names: 650 px; the last name at y = 40 + 10 + 18 * 29 + 4 = 576, the x label at the foot.
+  const std::string svg = chart(30);
+  EXPECT_NE(svg.find("height='650'"), std::string::npos);
+  EXPECT_NE(svg.find("y='576.0'>s29</text>"), std::string::npos);
+  EXPECT_NE(svg.find("y='640.0' text-anchor='middle'>"), std::string::npos);
+}
+
 TEST(LineChart, WritesPngOfTheChartsSizeAndLeavesNoPartialFiles) {
   mimic::LineChart c;
   c.series = {{"a", {0, 1, 2}, {0, 1, 4}}};

@@ -69,7 +69,9 @@ std::string line_chart_svg(const LineChart& c) {
   const double legend = std::max(150.0, 30.0 + 7.0 * static_cast<double>(longest));
   const double width = c.width + (legend - 150.0);
   const double left = 70, right = 20 + legend, top = 40, bottom = 50;
-  const double pw = width - left - right, ph = c.height - top - bottom;
+  // A legend taller than the plot makes the picture taller (18 px a name), not runs off its foot.
+  const double height = std::max(static_cast<double>(c.height), top + 20 + 18.0 * static_cast<double>(c.series.size()) + bottom);
+  const double pw = width - left - right, ph = height - top - bottom;
   auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
   auto py = [&](double y) { return top + ph - (y - y0) / (y1 - y0) * ph; };
   // Ten colours, then the same ten dashed, then dotted: every series of a table-sized chart stays
@@ -83,7 +85,7 @@ std::string line_chart_svg(const LineChart& c) {
   std::string svg = fmt::format(
       "<svg xmlns='http://www.w3.org/2000/svg' width='{0}' height='{1}' viewBox='0 0 {0} {1}' font-family='sans-serif' font-size='12'>\n"
       "<rect width='100%' height='100%' fill='white'/>\n<text x='{2}' y='22' font-size='15'>{3}</text>\n",
-      width, c.height, left, svg_escape(c.title));
+      width, height, left, svg_escape(c.title));
   for (double t : xt)
     svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{0:.1f}' y2='{2:.1f}' stroke='#ddd'/><text x='{0:.1f}' y='{3:.1f}' text-anchor='middle'>{4}</text>\n",
                        px(t), top, top + ph, top + ph + 16, label(t));
@@ -91,7 +93,7 @@ std::string line_chart_svg(const LineChart& c) {
     svg += fmt::format("<line x1='{0:.1f}' y1='{1:.1f}' x2='{2:.1f}' y2='{1:.1f}' stroke='#ddd'/><text x='{3:.1f}' y='{4:.1f}' text-anchor='end'>{5}</text>\n",
                        left, py(t), left + pw, left - 6, py(t) + 4, label(t));
   svg += fmt::format("<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='#444'/>\n", left, top, pw, ph);
-  svg += fmt::format("<text x='{:.1f}' y='{:.1f}' text-anchor='middle'>{}</text>\n", left + pw / 2, c.height - 10.0, svg_escape(c.x_label));
+  svg += fmt::format("<text x='{:.1f}' y='{:.1f}' text-anchor='middle'>{}</text>\n", left + pw / 2, height - 10.0, svg_escape(c.x_label));
   svg += fmt::format("<text transform='translate(16 {:.1f}) rotate(-90)' text-anchor='middle'>{}</text>\n", top + ph / 2, svg_escape(c.y_label));
   // Bands first, so that no band hides another series' line.
   for (std::size_t k = 0; k < c.series.size(); ++k) {
