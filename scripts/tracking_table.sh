@@ -10,7 +10,7 @@
 # Then the tables (mimic table) and learning curves (mimic plot) docs/tracking.md shows:
 # <out>/{table,backflip_init,walk_init}.md and <figures>/{tracking_skills,backflip_init,walk_init}_reward.png.
 # A run whose evaluation is already there is not trained again and one with a checkpoint is
-# resumed, so a stopped script picks up where it was.
+# resumed (to this call's iterations), so a stopped script picks up where it was.
 # Usage: scripts/tracking_table.sh [iterations per run (default 250: 1.02 M samples)] [out dir]
 # EVAL_ONLY=1 evaluates the runs already there again (after a change to mimic eval) instead;
 # REPORT_ONLY=1 only writes the tables and figures; FIGURES=dir (default: out dir) takes the figures.
@@ -70,7 +70,7 @@ train() {
   fi
   local start=("$config" --set iterations="$iterations" --set collect.threads=1 --set checkpoint_every=10 "$@")
   if [[ -f $out/$name/checkpoint.pt ]]; then
-    start=(--resume)
+    start=(--resume --iterations "$iterations")  # to this call's count, not the one it was started with
   else
     rm -rf "${out:?}/$name"
   fi
