@@ -10,14 +10,16 @@
 
 namespace mimic {
 
-double link_position_error(const LinkFrames& sim, const LinkFrames& ref) {
+std::vector<double> link_distances(const LinkFrames& sim, const LinkFrames& ref) {
   if (sim.joint_pos.size() != ref.joint_pos.size() || sim.joint_pos.empty())
     throw Error("imitation error: " + std::to_string(sim.joint_pos.size()) + " simulated links against " +
                 std::to_string(ref.joint_pos.size()) + " reference links");
-  double sum = 0;
-  for (std::size_t j = 0; j < sim.joint_pos.size(); ++j) sum += (sim.joint_pos[j] - ref.joint_pos[j]).norm();
-  return sum / static_cast<double>(sim.joint_pos.size());
+  std::vector<double> d(sim.joint_pos.size());
+  for (std::size_t j = 0; j < d.size(); ++j) d[j] = (sim.joint_pos[j] - ref.joint_pos[j]).norm();
+  return d;
 }
+
+double link_position_error(const LinkFrames& sim, const LinkFrames& ref) { return mean_of(link_distances(sim, ref)); }
 
 double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<LinkFrames>& ref) {
   if (sim.size() != ref.size() || sim.empty())
@@ -25,13 +27,6 @@ double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<Li
   double sum = 0;
   for (std::size_t f = 0; f < sim.size(); ++f) sum += link_position_error(sim[f], ref[f]);
   return sum / static_cast<double>(sim.size());
-}
-
-std::vector<double> link_distances(const LinkFrames& sim, const LinkFrames& ref) {
-  link_position_error(sim, ref);  // the same checks
-  std::vector<double> d(sim.joint_pos.size());
-  for (std::size_t j = 0; j < d.size(); ++j) d[j] = (sim.joint_pos[j] - ref.joint_pos[j]).norm();
-  return d;
 }
 
 double pose_error(const LinkFrames& sim, const LinkFrames& ref) {
@@ -119,18 +114,21 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
         lay |= low >= kLyingFrames;
       }
     }
-    report.trial_errors.push_back(trajectory_error(sim_frames, ref_frames));
-    double pose = 0;
+    // Each frame's link distances once: the trial's error, its links' and its steps' come from them.
+    const double frames_in_trial = static_cast<double>(sim_frames.size());
+    double error = 0, pose = 0;
     for (std::size_t f = 0; f < sim_frames.size(); ++f) {
-      const double posture = pose_error(sim_frames[f], ref_frames[f]);
+      const std::vector<double> d = link_distances(sim_frames[f], ref_frames[f]);
+      const double frame_error = mean_of(d), posture = pose_error(sim_frames[f], ref_frames[f]);
+      error += frame_error;
       pose += posture;
-      report.step_errors[f] += link_position_error(sim_frames[f], ref_frames[f]);
+      report.step_errors[f] += frame_error;
       report.step_pose_errors[f] += posture;
       ++step_trials[f];
-      const std::vector<double> d = link_distances(sim_frames[f], ref_frames[f]);
-      for (std::size_t j = 0; j < num_links; ++j) report.link_errors[j] += d[j] / (static_cast<double>(sim_frames.size()) * trials);
+      for (std::size_t j = 0; j < num_links; ++j) report.link_errors[j] += d[j] / (frames_in_trial * trials);
     }
-    report.trial_pose_errors.push_back(pose / static_cast<double>(sim_frames.size()));
+    report.trial_errors.push_back(error / frames_in_trial);
+    report.trial_pose_errors.push_back(pose / frames_in_trial);
     if (fell) ++report.falls;
     if (fell || lay) ++report.down;
     if (max_step > 0) report.trial_returns.push_back(ret / (episode_steps * max_step));
