@@ -58,21 +58,22 @@ struct EvalArgs {
   std::uint64_t seed = 12345;
 };
 
-// The `count` links with the largest errors, largest first: "right_wrist 0.312, ...".
-std::string largest_links(const ImitationReport& r, std::size_t count) {
-  std::vector<std::size_t> order(r.link_errors.size());
+// The `count` links with the largest values of a per-link vector, largest first: "right_wrist 0.312, ...".
+std::string largest_links(const ImitationReport& r, const std::vector<double>& per_link, std::size_t count) {
+  std::vector<std::size_t> order(per_link.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.link_errors[a] > r.link_errors[b]; });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return per_link[a] > per_link[b]; });
   std::string out;
   for (std::size_t i = 0; i < std::min(count, order.size()); ++i)
-    out += fmt::format("{}{} {:.3f}", i ? ", " : "", r.link_names[order[i]], r.link_errors[order[i]]);
+    out += fmt::format("{}{} {:.3f}", i ? ", " : "", r.link_names[order[i]], per_link[order[i]]);
   return out + " m";
 }
 
-std::string link_errors_json(const ImitationReport& r) {
+// {"root": 0.1, ...}: a per-link vector by link name.
+std::string links_json(const ImitationReport& r, const std::vector<double>& per_link) {
   std::string out = "{";
-  for (std::size_t j = 0; j < r.link_errors.size(); ++j)
-    out += fmt::format("{}{}: {}", j ? ", " : "", json_string(r.link_names[j]), json_number(r.link_errors[j]));
+  for (std::size_t j = 0; j < per_link.size(); ++j)
+    out += fmt::format("{}{}: {}", j ? ", " : "", json_string(r.link_names[j]), json_number(per_link[j]));
   return out + "}";
 }
 
@@ -246,7 +247,8 @@ void evaluate(const EvalArgs& args) {
                  *std::max_element(r.trial_errors.begin(), r.trial_errors.end()));
     spdlog::info("  pose error      {:.3f} +- {:.3f} m (the same with the root's offset taken out: posture, not place)",
                  r.pose_error_mean(), r.pose_error_std());
-    spdlog::info("  largest links   {}", largest_links(r, 5));
+    spdlog::info("  largest links   {}", largest_links(r, r.link_errors, 5));
+    spdlog::info("  in posture      {}", largest_links(r, r.link_pose_errors, 5));
     spdlog::info("  falls           {} of {} full episodes; down (a fall, or the root below half the reference's for {} frames) {}", r.falls,
                  r.trial_errors.size(), kLyingFrames, r.down);
     if (!r.trial_returns.empty()) spdlog::info("  normalised return {:.3f} (full episodes; 1 = perfect tracking)", r.normalised_return_mean());
@@ -256,12 +258,12 @@ void evaluate(const EvalArgs& args) {
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
                         "\"trial_errors\": {}, \"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}, "
                         "\"trial_progress\": {}, \"pose_error_mean\": {}, \"pose_error_std\": {}, \"trial_pose_errors\": {}, "
-                        "\"link_errors\": {}, \"step_errors\": {}, \"step_pose_errors\": {}{}}}",
+                        "\"link_errors\": {}, \"link_pose_errors\": {}, \"step_errors\": {}, \"step_pose_errors\": {}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
                         json_number(r.error_std()), json_numbers(r.trial_errors), r.falls, r.down,
                         json_number(r.normalised_return_mean()), json_number(r.progress_mean()), json_numbers(r.trial_progress),
                         json_number(r.pose_error_mean()), json_number(r.pose_error_std()), json_numbers(r.trial_pose_errors),
-                        link_errors_json(r), json_numbers(r.step_errors), json_numbers(r.step_pose_errors),
+                        links_json(r, r.link_errors), links_json(r, r.link_pose_errors), json_numbers(r.step_errors), json_numbers(r.step_pose_errors),
                         contexts ? fmt::format(", \"context\": {}", args.context) : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");

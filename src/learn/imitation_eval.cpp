@@ -29,14 +29,21 @@ double trajectory_error(const std::vector<LinkFrames>& sim, const std::vector<Li
   return sum / static_cast<double>(sim.size());
 }
 
-double pose_error(const LinkFrames& sim, const LinkFrames& ref) {
+std::vector<double> pose_distances(const LinkFrames& sim, const LinkFrames& ref) {
   if (sim.joint_pos.size() != ref.joint_pos.size() || sim.joint_pos.size() < 2)
     throw Error("pose error: " + std::to_string(sim.joint_pos.size()) + " simulated links against " +
                 std::to_string(ref.joint_pos.size()) + " reference links (needs two or more)");
   const Vec3 offset = sim.joint_pos[0] - ref.joint_pos[0];
-  double sum = 0;
-  for (std::size_t j = 1; j < sim.joint_pos.size(); ++j) sum += (sim.joint_pos[j] - ref.joint_pos[j] - offset).norm();
-  return sum / static_cast<double>(sim.joint_pos.size() - 1);
+  std::vector<double> d(sim.joint_pos.size(), 0.0);
+  for (std::size_t j = 1; j < d.size(); ++j) d[j] = (sim.joint_pos[j] - ref.joint_pos[j] - offset).norm();
+  return d;
+}
+
+double pose_error(const LinkFrames& sim, const LinkFrames& ref) { return mean_without_root(pose_distances(sim, ref)); }
+
+double mean_without_root(const std::vector<double>& per_link) {
+  if (per_link.size() < 2) throw Error("pose error: needs two or more links");
+  return std::accumulate(per_link.begin() + 1, per_link.end(), 0.0) / static_cast<double>(per_link.size() - 1);
 }
 
 double ImitationReport::error_mean() const { return mean_of(trial_errors); }
@@ -72,6 +79,7 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
   const std::size_t num_links = static_cast<std::size_t>(sk.num_joints());
   for (const Joint& j : sk.joints) report.link_names.push_back(j.name);
   report.link_errors.assign(num_links, 0.0);
+  report.link_pose_errors.assign(num_links, 0.0);
   report.step_errors.assign(static_cast<std::size_t>(cycle_steps), 0.0);
   report.step_pose_errors.assign(static_cast<std::size_t>(cycle_steps), 0.0);
   std::vector<int> step_trials(static_cast<std::size_t>(cycle_steps), 0);
@@ -119,13 +127,17 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     double error = 0, pose = 0;
     for (std::size_t f = 0; f < sim_frames.size(); ++f) {
       const std::vector<double> d = link_distances(sim_frames[f], ref_frames[f]);
-      const double frame_error = mean_of(d), posture = pose_error(sim_frames[f], ref_frames[f]);
+      const std::vector<double> dp = pose_distances(sim_frames[f], ref_frames[f]);
+      const double frame_error = mean_of(d), posture = mean_without_root(dp);
       error += frame_error;
       pose += posture;
       report.step_errors[f] += frame_error;
       report.step_pose_errors[f] += posture;
       ++step_trials[f];
-      for (std::size_t j = 0; j < num_links; ++j) report.link_errors[j] += d[j] / (frames_in_trial * trials);
+      for (std::size_t j = 0; j < num_links; ++j) {
+        report.link_errors[j] += d[j] / (frames_in_trial * trials);
+        report.link_pose_errors[j] += dp[j] / (frames_in_trial * trials);
+      }
     }
     report.trial_errors.push_back(error / frames_in_trial);
     report.trial_pose_errors.push_back(pose / frames_in_trial);

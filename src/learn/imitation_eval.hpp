@@ -34,6 +34,11 @@ std::vector<double> link_distances(const LinkFrames& sim, const LinkFrames& ref)
 // scores near 0 here and high on link_position_error; a bent posture scores high on both.
 // Throws Error with fewer than two links or differing counts.
 double pose_error(const LinkFrames& sim, const LinkFrames& ref);
+// Per link (joint order): |(sim_j - sim_root) - (ref_j - ref_root)|, 0 for the root; pose_error is
+// mean_without_root of it. Throws as pose_error.
+std::vector<double> pose_distances(const LinkFrames& sim, const LinkFrames& ref);
+// The mean of a per-link vector over the links other than the root (index 0); throws with fewer than two.
+double mean_without_root(const std::vector<double>& per_link);
 
 // Consecutive frames a character must lie for to count as down (DESIGN.md section 5's robustness rule).
 constexpr int kLyingFrames = 10;
@@ -52,6 +57,9 @@ struct ImitationReport {
   // Per link (joint order; names in link_names): its distance averaged over each trial's cycle,
   // then over trials, so their mean over links is error_mean(). Says which links carry the error.
   std::vector<double> link_errors;
+  // The same of pose_distances (root 0): mean_without_root of it is pose_error_mean(). Says which
+  // links carry the posture's part (a run's arms, say) apart from the place's.
+  std::vector<double> link_pose_errors;
   std::vector<std::string> link_names;
   // Per control step of the cycle (step 1 first): the error and the pose error at that step,
   // averaged over the trials that reach it. A start that goes wrong at once rises early; a

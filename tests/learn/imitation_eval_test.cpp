@@ -58,6 +58,16 @@ TEST(ImitationError, PoseErrorTakesOutTheRootsOffsetAndLinkDistancesSplitTheMean
   // over the two links other than the root; world (0 + 0.6 + 0.2) / 3.
   const LinkFrames bent = links({Vec3(0, 0, 1), Vec3(1, 0, 1.6), Vec3(0, 0.2, 2)});
   EXPECT_NEAR(pose_error(bent, ref), 0.4, 1e-12);
+  // By link: the root's 0, then the same 0.6 and 0.2 (the root did not move).
+  const std::vector<double> dp = pose_distances(bent, ref);
+  ASSERT_EQ(dp.size(), 3u);
+  EXPECT_NEAR(dp[0], 0.0, 1e-12);
+  EXPECT_NEAR(dp[1], 0.6, 1e-12);
+  EXPECT_NEAR(dp[2], 0.2, 1e-12);
+  EXPECT_NEAR(mean_without_root(dp), 0.4, 1e-12);
+  // Shifted as a whole: no link is off in posture, whatever its world distance.
+  for (double d : pose_distances(moved, ref)) EXPECT_NEAR(d, 0.0, 1e-12);
+  EXPECT_THROW(mean_without_root({0.5}), Error);
   const std::vector<double> d = link_distances(bent, ref);
   ASSERT_EQ(d.size(), 3u);
   EXPECT_NEAR(d[0], 0.0, 1e-12);
@@ -128,6 +138,10 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
   ASSERT_EQ(bad.trial_pose_errors.size(), 4u);
   EXPECT_LT(bad.pose_error_mean(), bad.error_mean());
   EXPECT_LT(good.pose_error_mean(), bad.pose_error_mean());
+  // Posture by link: the root's is 0 and the others average to the pose error.
+  ASSERT_EQ(bad.link_pose_errors.size(), bad.link_errors.size());
+  EXPECT_EQ(bad.link_pose_errors[0], 0.0);
+  EXPECT_NEAR(mean_without_root(bad.link_pose_errors), bad.pose_error_mean(), 1e-9);
   // Per step of the cycle: one value a step (the walk loops: every trial reaches every step),
   // averaging to the error; the character holding still falls behind, so its error grows.
   ASSERT_EQ(bad.step_errors.size(), static_cast<std::size_t>(std::lround(good.cycle_seconds * 30)));
