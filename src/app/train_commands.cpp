@@ -117,17 +117,43 @@ void add_train_commands(CLI::App& app) {
   // Adam moments, the discriminator's replay); a model to commit or ship needs only what acts.
   struct ExportArgs {
     std::filesystem::path run, out;
+    std::vector<std::filesystem::path> average_with;
+    int average_last = 0;
   };
   auto exp = std::make_shared<ExportArgs>();
   CLI::App* export_cmd = app.add_subcommand(
       "export", "an acting-only copy of a run (config.yaml, a slim checkpoint.pt, metrics.csv): for models/, eval, render, embedding");
   export_cmd->add_option("run", exp->run, "training run directory (config.yaml + checkpoint.pt)")->required()->check(CLI::ExistingDirectory);
   export_cmd->add_option("-o,--out", exp->out, "model directory to write")->required();
+  export_cmd->add_option("--average-with", exp->average_with,
+                         "other checkpoints of the run (directories or checkpoint files, e.g. copies taken as it trained): the model's "
+                         "policy weights are the mean of these and the run's own; the run's normalisers, value and discriminators are kept")
+      ->check(CLI::ExistingPath);
+  export_cmd->add_option("--average-last", exp->average_last,
+                         "the model's policy weights are the mean of the run's last K: its own and the K-1 policy snapshots before it "
+                         "(RUN/snapshots, written with the config's snapshot_every)")
+      ->check(CLI::Range(2, 1'000'000));
   export_cmd->callback([exp] {
     if (std::filesystem::exists(exp->out / "checkpoint.pt"))
       throw Error(exp->out.string() + " already holds a checkpoint.pt: choose another directory or remove it");
     // With its reward sources, so that the discriminators' scores stay available to the model.
     const std::unique_ptr<Trainer> trainer = Trainer::load_policy(exp->run, true);
+    if (exp->average_last > 0) {
+      std::vector<std::filesystem::path> before;
+      for (const auto& [iteration, path] : Trainer::policy_snapshots(exp->run))
+        if (iteration < trainer->iteration()) before.push_back(path);
+      const auto wanted = static_cast<std::size_t>(exp->average_last - 1);
+      if (before.size() < wanted)
+        throw Error((exp->run / "snapshots").string() + ": " + std::to_string(before.size()) + " policy snapshots before the run's iteration " +
+                    std::to_string(trainer->iteration()) + "; --average-last " + std::to_string(exp->average_last) + " needs " +
+                    std::to_string(wanted) + " (the config's snapshot_every writes them as the run trains)");
+      exp->average_with.insert(exp->average_with.end(), before.end() - static_cast<std::ptrdiff_t>(wanted), before.end());
+    }
+    if (!exp->average_with.empty()) {
+      const double shift = trainer->average_policy_with(exp->average_with);
+      spdlog::info("policy weights averaged over {} checkpoints; their observation means lie within {:.3f} standard deviations of the run's",
+                   exp->average_with.size() + 1, shift);
+    }
     std::filesystem::create_directories(exp->out);
     write_file_atomic(exp->out / "config.yaml", read_text_file(exp->run / "config.yaml"));
     if (std::filesystem::exists(exp->run / "metrics.csv"))

@@ -118,6 +118,23 @@ void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path)
   write_file_atomic(path, out.str());
 }
 
+void write_policy_snapshot(const Trainer::Impl& t, const std::filesystem::path& path) {
+  OutputArchive a, policy;
+  a.write("format", torch::tensor(kFormat));
+  a.write("policy_snapshot", torch::tensor(static_cast<std::int64_t>(1)));
+  a.write("iteration", torch::tensor(static_cast<std::int64_t>(t.iteration)));
+  a.write("samples", torch::tensor(static_cast<std::int64_t>(t.samples)));
+  a.write("config", bytes_tensor(t.cfg.text));
+  a.write("input_size", torch::tensor(static_cast<std::int64_t>(t.collector->input_size())));
+  a.write("action_size", torch::tensor(static_cast<std::int64_t>(t.collector->action_size())));
+  t.learner->policy()->save(policy);
+  a.write("policy", policy);
+  write_normalizer(a, "obs_norm", t.obs_norm);
+  std::ostringstream out;
+  a.save_to(out);
+  write_file_atomic(path, out.str());
+}
+
 namespace {
 
 // Opens the archive after the checks LibTorch does not make; errors without the file's name.
@@ -147,10 +164,15 @@ void check_format(InputArchive& a) {
 }
 
 // Opens a checkpoint for this trainer: a readable archive of this format, saved for the same
-// action size and (unless `other_input_ok`) input size; returns the saved input size.
-std::int64_t open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a, bool other_input_ok = false) {
+// action size and (unless `other_input_ok`) input size, and not a policy snapshot unless
+// `snapshot_ok`; returns the saved input size.
+std::int64_t open_for(const Trainer::Impl& t, const std::filesystem::path& path, InputArchive& a, bool other_input_ok = false,
+                      bool snapshot_ok = false) {
   open_archive(path, a);
   check_format(a);
+  torch::Tensor flag;
+  if (!snapshot_ok && a.try_read("policy_snapshot", flag))
+    throw Error("a policy snapshot (the policy's weights and normaliser, for mimic export --average-last), not a checkpoint");
   const auto in_size = get(a, "input_size").item<std::int64_t>();
   const auto act_size = get(a, "action_size").item<std::int64_t>();
   if ((in_size != t.collector->input_size() && !other_input_ok) || act_size != t.collector->action_size())
@@ -392,6 +414,43 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
   }
   if (sources == 0) throw Error("no reward source with one discriminator per context (per_context: true) to start from other runs");
   return sources;
+}
+
+double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints) {
+  torch::NoGradGuard no_grad;
+  const auto own = t.learner->policy()->named_parameters();
+  std::vector<torch::Tensor> sum;
+  for (const auto& p : own) sum.push_back(p.value().detach().clone());
+  const Eigen::ArrayXd stddev = t.obs_norm.stddev().array().max(1e-8);
+  double largest_shift = 0;
+  for (const auto& path : checkpoints) {
+    const std::string where = path.string();
+    if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
+    try {
+      InputArchive a, saved_policy;
+      open_for(t, path, a, /*other_input_ok=*/false, /*snapshot_ok=*/true);
+      a.read("policy", saved_policy);
+      GaussianPolicy other(static_cast<int>(t.collector->input_size()), static_cast<int>(t.collector->action_size()), t.cfg.policy);
+      other->load(saved_policy);  // LibTorch takes the saved shapes as they are: compared below
+      const auto theirs = other->named_parameters();
+      for (std::size_t i = 0; i < own.size(); ++i) {
+        if (theirs[i].key() != own[i].key() || !theirs[i].value().sizes().equals(own[i].value().sizes()))
+          throw Error("its policy's '" + own[i].key() + "' does not have this config's shape: not the same network");
+        sum[i] += theirs[i].value();
+      }
+      RunningNormalizer saved_norm(t.obs_norm.size());
+      read_normalizer(a, "obs_norm", saved_norm);
+      largest_shift = std::max(largest_shift, ((saved_norm.mean() - t.obs_norm.mean()).array().abs() / stddev).maxCoeff());
+    } catch (const c10::Error& e) {
+      throw Error(where + ": cannot average its policy (" + std::string(e.what_without_backtrace()) + ")");
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
+  }
+  const double n = static_cast<double>(checkpoints.size() + 1);
+  for (std::size_t i = 0; i < own.size(); ++i) own[i].value().copy_(sum[i] / n);
+  t.learner->check_parameters(t.iteration);
+  return largest_shift;
 }
 
 }  // namespace mimic

@@ -91,6 +91,7 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
   c.seed = top.seed("seed", c.seed);
   c.iterations = static_cast<int>(top.integer("iterations", c.iterations, 1, 100'000'000));
   c.checkpoint_every = static_cast<int>(top.integer("checkpoint_every", c.checkpoint_every, 1, 100'000'000));
+  c.snapshot_every = static_cast<int>(top.integer("snapshot_every", c.snapshot_every, 0, 100'000'000));
   c.tensorboard = top.boolean("tensorboard", c.tensorboard);
   c.env = top.child("env");
   if (c.env.IsDefined() && !c.env.IsMap()) r.fail(c.env, "'env': expected a mapping such as {name: planar_walker}");

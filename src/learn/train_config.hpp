@@ -97,6 +97,7 @@ struct TrainConfig {
   std::uint64_t seed = 1;
   int iterations = 100;
   int checkpoint_every = 10;
+  int snapshot_every = 0;  // > 0: the policy's weights to RUN/snapshots every that many iterations
   bool tensorboard = true;
   YAML::Node env;  // given to make_env_factory (env/env_factory.hpp); may be absent when the
                    // program supplies its own environments (TrainOptions::env_factory)

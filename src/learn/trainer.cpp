@@ -3,6 +3,9 @@
 #include <ATen/Parallel.h>
 #include <dlfcn.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -277,6 +280,10 @@ IterationMetrics Trainer::iterate() {
   IterationMetrics m = impl_->iterate();
   if (impl_->log) impl_->log->write(m);
   if (impl_->opts.on_iteration) impl_->opts.on_iteration(m);
+  if (impl_->cfg.snapshot_every > 0 && m.iteration % impl_->cfg.snapshot_every == 0 && !impl_->opts.run_dir.empty()) {
+    std::filesystem::create_directories(impl_->opts.run_dir / "snapshots");
+    write_policy_snapshot(*impl_, snapshot_path(impl_->opts.run_dir, m.iteration));
+  }
   if (m.iteration % impl_->cfg.checkpoint_every == 0) {
     if (!impl_->opts.run_dir.empty()) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
     // Episodes restart at every checkpoint, so that a resumed run matches the uninterrupted one.
@@ -322,6 +329,30 @@ void Trainer::export_model(const std::filesystem::path& path) {
   for (auto& source : impl_->rewards) source.second->drop_training_state();
   impl_->acting_only = true;
   write_checkpoint(*impl_, path);
+}
+
+std::filesystem::path Trainer::snapshot_path(const std::filesystem::path& run, int iteration) {
+  return run / "snapshots" / fmt::format("{:06d}.pt", iteration);
+}
+
+std::vector<std::pair<int, std::filesystem::path>> Trainer::policy_snapshots(const std::filesystem::path& run) {
+  std::vector<std::pair<int, std::filesystem::path>> out;
+  const std::filesystem::path dir = run / "snapshots";
+  if (!std::filesystem::is_directory(dir)) return out;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string stem = entry.path().stem().string();
+    if (entry.path().extension() != ".pt" || stem.empty() || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;  // not one of ours (a copy, an editor's file)
+    out.emplace_back(std::stoi(stem), entry.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+double Trainer::average_policy_with(const std::vector<std::filesystem::path>& checkpoints) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& p : checkpoints) files.push_back(std::filesystem::is_directory(p) ? p / "checkpoint.pt" : p);
+  return average_policy(*impl_, files);
 }
 
 std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources) {

@@ -79,6 +79,15 @@ class Trainer {
   // takes tens. It loads for eval, render, record and embedding; resuming it is refused, since
   // training would go on from fresh moments and an empty pool. This trainer drops them too.
   void export_model(const std::filesystem::path& path);
+  // Averages the policy's weights with those of other checkpoints of the same config (run
+  // directories or checkpoint files; stochastic weight averaging over a run's last checkpoints).
+  // Returns the largest gap between their observation normalisers' means and this one's, in this
+  // one's standard deviations (the averaged weights act on inputs normalised as this trainer's).
+  double average_policy_with(const std::vector<std::filesystem::path>& checkpoints);
+  // RUN/snapshots/<iteration>.pt, written every `snapshot_every` iterations: the policy's
+  // weights and normaliser, for averaging. The run's snapshots by iteration, oldest first.
+  static std::filesystem::path snapshot_path(const std::filesystem::path& run, int iteration);
+  static std::vector<std::pair<int, std::filesystem::path>> policy_snapshots(const std::filesystem::path& run);
   // Mean environment return of `episodes` episodes acting with the policy's mean (no noise);
   // uses its own environments and generator, so training is not disturbed.
   double evaluate(int episodes, std::uint64_t seed = 12345);

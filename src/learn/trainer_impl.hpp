@@ -55,6 +55,9 @@ struct Trainer::Impl {
 // Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong.
 void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path);
 void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path);
+// The policy's weights and observation normaliser alone (a few MB, atomic): what averaging needs.
+// Refused where a checkpoint is read.
+void write_policy_snapshot(const Trainer::Impl& t, const std::filesystem::path& path);
 // A fresh run's start from another run's (or an exported model's) checkpoint: policy, value,
 // normalisers and the state of every reward source saved at the same place in the config's list
 // (discriminators); optimisers, counters and generators stay fresh. With a fixed covariance the
@@ -65,6 +68,11 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path);
 // the config has no such source, the counts differ, or a checkpoint holds another kind. Returns
 // how many sources were loaded.
 int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints);
+// The policy's weights become the mean of its own and those saved in `checkpoints` (the same
+// run's checkpoints or policy snapshots); value, normalisers and discriminators stay this trainer's.
+// Returns the largest distance, in this normaliser's standard deviations, from its observation
+// mean to a checkpoint's: how far the averaged weights' inputs were normalised differently.
+double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints);
 // Whether the file is an acting-only export (mimic export), read without building a trainer.
 bool is_exported_checkpoint(const std::filesystem::path& path);
 

@@ -272,6 +272,84 @@ TEST(Trainer, AnExportedModelActsAsItsRunWithoutOptimiserStateAndIsNotResumed) {
   }
 }
 
+// snapshot_every writes the policy alone at those iterations; averaging makes each weight the
+// mean of the checkpoints' and reports how far their normalisers' means lie apart.
+TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
+  const auto dir = test::temp_dir("trainer_snapshots");
+  TrainOptions o;
+  o.run_dir = dir / "run";
+  const std::string text = walker_config(4, 1) + "snapshot_every: 2\n";
+  Trainer run(config(text), o);
+  run.iterate();
+  run.iterate();
+  const std::vector<torch::Tensor> at2 = params(*run.impl().learner->policy());
+  const RunningNormalizer norm2 = run.impl().obs_norm;
+  run.iterate();
+  run.iterate();
+  run.save_checkpoint(dir / "run" / "checkpoint.pt");
+  const std::vector<torch::Tensor> at4 = params(*run.impl().learner->policy());
+  const RunningNormalizer& norm4 = run.impl().obs_norm;
+
+  const auto snapshots = Trainer::policy_snapshots(dir / "run");
+  ASSERT_EQ(snapshots.size(), 2u);
+  EXPECT_EQ(snapshots[0].first, 2);
+  EXPECT_EQ(snapshots[1].first, 4);
+  EXPECT_EQ(snapshots[0].second, Trainer::snapshot_path(dir / "run", 2));
+  EXPECT_EQ(snapshots[0].second.filename(), "000002.pt");
+  EXPECT_LT(std::filesystem::file_size(snapshots[1].second), std::filesystem::file_size(dir / "run" / "checkpoint.pt"));
+
+  // A snapshot is no checkpoint: loading or starting from one says what it is.
+  Trainer other(config(text));
+  try {
+    other.load_checkpoint(snapshots[0].second);
+    FAIL() << "a snapshot loaded as a checkpoint";
+  } catch (const mimic::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("000002.pt: a policy snapshot"), std::string::npos) << e.what();
+  }
+
+  // The run's own (iteration 4) with the snapshot at 2: the mean, weight by weight.
+  Trainer averaged(config(text));
+  averaged.load_checkpoint(dir / "run" / "checkpoint.pt");
+  const double shift = averaged.average_policy_with({snapshots[0].second});
+  const std::vector<torch::Tensor> mean = params(*averaged.impl().learner->policy());
+  ASSERT_EQ(mean.size(), at2.size());
+  bool moved = false;
+  for (std::size_t i = 0; i < mean.size(); ++i) {
+    EXPECT_TRUE(torch::allclose(mean[i], (at2[i] + at4[i]) / 2, 1e-6, 1e-7)) << "tensor " << i;
+    moved = moved || !torch::equal(at2[i], at4[i]);
+  }
+  EXPECT_TRUE(moved) << "two iterations changed no weight: the test would not see averaging";
+  const Eigen::ArrayXd expected_gap = (norm2.mean() - norm4.mean()).array().abs() / norm4.stddev().array().max(1e-8);
+  EXPECT_NEAR(shift, expected_gap.maxCoeff(), 1e-9);
+  EXPECT_GT(shift, 0.0);
+
+  // The snapshot at the run's own iteration holds its policy: averaging with it changes nothing.
+  Trainer same(config(text));
+  same.load_checkpoint(dir / "run" / "checkpoint.pt");
+  EXPECT_EQ(same.average_policy_with({snapshots[1].second}), 0.0);
+  expect_identical(params(*same.impl().learner->policy()), at4);
+}
+
+TEST(Trainer, AveragingRefusesAnotherNetworkNamingTheFileAndTheWeight) {
+  const auto dir = test::temp_dir("trainer_average_mismatch");
+  Trainer wide(config(walker_config(1, 1) + "snapshot_every: 1\n"));
+  std::string narrow_text = walker_config(1, 1);
+  narrow_text.replace(narrow_text.find("policy: {hidden: [32, 32]"), 25, "policy: {hidden: [16, 32]");
+  Trainer narrow(config(narrow_text));
+  narrow.save_checkpoint(dir / "narrow.pt");
+  const std::vector<torch::Tensor> before = params(*wide.impl().learner->policy());
+  try {
+    wide.average_policy_with({dir / "narrow.pt"});
+    FAIL() << "a policy of another shape was averaged";
+  } catch (const mimic::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("narrow.pt: its policy's '"), std::string::npos) << what;
+    EXPECT_NE(what.find("not the same network"), std::string::npos) << what;
+  }
+  expect_identical(params(*wide.impl().learner->policy()), before);  // untouched on error
+  EXPECT_THROW(wide.average_policy_with({dir / "absent.pt"}), mimic::Error);
+}
+
 // --init-from a run whose observation lacked a part the config now names (reference_root): the
 // saved weights keep their inputs, the new part's weigh zero, so the policy acts as it did.
 TEST(Trainer, ARunWithAnAddedObservationPartStartsFromOneWithoutItActingAsItDid) {
