@@ -241,6 +241,8 @@ run_ok(train ${OUT}/gail.yaml -o ${OUT}/gail_snap --set snapshot_every=1 --itera
 file(COPY ${OUT}/demos.csv DESTINATION ${OUT}/gail_snap)
 run_ok(export ${OUT}/gail_snap -o ${OUT}/gail_avg --average-last 3)
 expect_in("${LAST_OUT}" "policy weights averaged over 3 checkpoints")
+file(READ ${OUT}/gail_avg/config.yaml gail_avg_config)
+expect_in("${gail_avg_config}" "# policy weights: the mean of this run's at iteration 3 and ${OUT}/gail_snap/snapshots/000001.pt ${OUT}/gail_snap/snapshots/000002.pt\n")
 run_ok(eval ${OUT}/gail_avg --episodes 1)
 run_fails("2 policy snapshots before the run's iteration 3; --average-last 4 needs 3" export ${OUT}/gail_snap -o ${OUT}/gail_avg4 --average-last 4)
 run_fails("0 policy snapshots before the run's iteration 2" export ${OUT}/gail_run -o ${OUT}/gail_avg0 --average-last 2)

@@ -149,13 +149,17 @@ void add_train_commands(CLI::App& app) {
                     std::to_string(wanted) + " (the config's snapshot_every writes them as the run trains)");
       exp->average_with.insert(exp->average_with.end(), before.end() - static_cast<std::ptrdiff_t>(wanted), before.end());
     }
+    std::string provenance;  // the model's config says what its policy is the mean of
     if (!exp->average_with.empty()) {
       const double shift = trainer->average_policy_with(exp->average_with);
       spdlog::info("policy weights averaged over {} checkpoints; their observation means lie within {:.3f} standard deviations of the run's",
                    exp->average_with.size() + 1, shift);
+      provenance = fmt::format("# policy weights: the mean of this run's at iteration {} and", trainer->iteration());
+      for (const auto& p : exp->average_with) provenance += " " + p.string();
+      provenance += "\n";
     }
     std::filesystem::create_directories(exp->out);
-    write_file_atomic(exp->out / "config.yaml", read_text_file(exp->run / "config.yaml"));
+    write_file_atomic(exp->out / "config.yaml", provenance + read_text_file(exp->run / "config.yaml"));
     if (std::filesystem::exists(exp->run / "metrics.csv"))
       write_file_atomic(exp->out / "metrics.csv", read_text_file(exp->run / "metrics.csv"));
     trainer->export_model(exp->out / "checkpoint.pt");

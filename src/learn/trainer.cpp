@@ -341,7 +341,8 @@ std::vector<std::pair<int, std::filesystem::path>> Trainer::policy_snapshots(con
   if (!std::filesystem::is_directory(dir)) return out;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     const std::string stem = entry.path().stem().string();
-    if (entry.path().extension() != ".pt" || stem.empty() || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    if (entry.path().extension() != ".pt" || stem.empty() || stem.size() > 9 ||
+        !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
       continue;  // not one of ours (a copy, an editor's file)
     out.emplace_back(std::stoi(stem), entry.path());
   }

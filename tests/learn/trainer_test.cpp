@@ -290,6 +290,8 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   const std::vector<torch::Tensor> at4 = params(*run.impl().learner->policy());
   const RunningNormalizer& norm4 = run.impl().obs_norm;
 
+  write_file_atomic(dir / "run" / "snapshots" / "000003 copy.pt", "a user's copy");  // not a snapshot's name: not listed
+  write_file_atomic(dir / "run" / "snapshots" / "99999999999.pt", "too long for an iteration");
   const auto snapshots = Trainer::policy_snapshots(dir / "run");
   ASSERT_EQ(snapshots.size(), 2u);
   EXPECT_EQ(snapshots[0].first, 2);
