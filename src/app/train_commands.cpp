@@ -119,6 +119,7 @@ void add_train_commands(CLI::App& app) {
     std::filesystem::path run, out;
     std::vector<std::filesystem::path> average_with;
     int average_last = 0;
+    std::filesystem::path policy_from;
   };
   auto exp = std::make_shared<ExportArgs>();
   CLI::App* export_cmd = app.add_subcommand(
@@ -133,6 +134,12 @@ void add_train_commands(CLI::App& app) {
                          "the model's policy weights are the mean of the run's last K: its own and the K-1 policy snapshots before it "
                          "(RUN/snapshots, written with the config's snapshot_every)")
       ->check(CLI::Range(2, 1'000'000));
+  export_cmd->add_option("--policy-from", exp->policy_from,
+                         "the policy as it was in this snapshot or checkpoint of the run (e.g. RUN/snapshots/000400.pt): its weights, "
+                         "normaliser and iteration; the run's value and discriminators are kept")
+      ->check(CLI::ExistingPath)
+      ->excludes("--average-with")
+      ->excludes("--average-last");
   export_cmd->callback([exp] {
     if (std::filesystem::exists(exp->out / "checkpoint.pt"))
       throw Error(exp->out.string() + " already holds a checkpoint.pt: choose another directory or remove it");
@@ -149,7 +156,11 @@ void add_train_commands(CLI::App& app) {
                     std::to_string(wanted) + " (the config's snapshot_every writes them as the run trains)");
       exp->average_with.insert(exp->average_with.end(), before.end() - static_cast<std::ptrdiff_t>(wanted), before.end());
     }
-    std::string provenance;  // the model's config says what its policy is the mean of
+    std::string provenance;  // the model's config says where its policy comes from
+    if (!exp->policy_from.empty()) {
+      trainer->take_policy_from(exp->policy_from);
+      provenance = "# policy: " + exp->policy_from.string() + " (iteration " + std::to_string(trainer->iteration()) + ")\n";
+    }
     if (!exp->average_with.empty()) {
       const double shift = trainer->average_policy_with(exp->average_with);
       spdlog::info("policy weights averaged over {} checkpoints; their observation means lie within {:.3f} standard deviations of the run's",

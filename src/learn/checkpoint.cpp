@@ -124,6 +124,7 @@ void write_policy_snapshot(const Trainer::Impl& t, const std::filesystem::path& 
   a.write("policy_snapshot", torch::tensor(static_cast<std::int64_t>(1)));
   a.write("iteration", torch::tensor(static_cast<std::int64_t>(t.iteration)));
   a.write("samples", torch::tensor(static_cast<std::int64_t>(t.samples)));
+  a.write("wall_seconds", torch::tensor(t.wall_seconds, torch::kFloat64));
   a.write("config", bytes_tensor(t.cfg.text));
   a.write("input_size", torch::tensor(static_cast<std::int64_t>(t.collector->input_size())));
   a.write("action_size", torch::tensor(static_cast<std::int64_t>(t.collector->action_size())));
@@ -416,6 +417,24 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
   return sources;
 }
 
+namespace {
+
+// The policy saved in `a` (a checkpoint or snapshot for this config), in a network of its own.
+GaussianPolicy saved_policy(const Trainer::Impl& t, InputArchive& a) {
+  InputArchive saved;
+  a.read("policy", saved);
+  GaussianPolicy policy(static_cast<int>(t.collector->input_size()), static_cast<int>(t.collector->action_size()), t.cfg.policy);
+  policy->load(saved);  // LibTorch takes the saved shapes as they are: compared here
+  const auto own = t.learner->policy()->named_parameters();
+  const auto theirs = policy->named_parameters();
+  for (std::size_t i = 0; i < own.size(); ++i)
+    if (i >= theirs.size() || theirs[i].key() != own[i].key() || !theirs[i].value().sizes().equals(own[i].value().sizes()))
+      throw Error("its policy's '" + own[i].key() + "' does not have this config's shape: not the same network");
+  return policy;
+}
+
+}  // namespace
+
 double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints) {
   torch::NoGradGuard no_grad;
   const auto own = t.learner->policy()->named_parameters();
@@ -427,17 +446,10 @@ double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>
     const std::string where = path.string();
     if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
     try {
-      InputArchive a, saved_policy;
+      InputArchive a;
       open_for(t, path, a, /*other_input_ok=*/false, /*snapshot_ok=*/true);
-      a.read("policy", saved_policy);
-      GaussianPolicy other(static_cast<int>(t.collector->input_size()), static_cast<int>(t.collector->action_size()), t.cfg.policy);
-      other->load(saved_policy);  // LibTorch takes the saved shapes as they are: compared below
-      const auto theirs = other->named_parameters();
-      for (std::size_t i = 0; i < own.size(); ++i) {
-        if (theirs[i].key() != own[i].key() || !theirs[i].value().sizes().equals(own[i].value().sizes()))
-          throw Error("its policy's '" + own[i].key() + "' does not have this config's shape: not the same network");
-        sum[i] += theirs[i].value();
-      }
+      const auto theirs = saved_policy(t, a)->named_parameters();
+      for (std::size_t i = 0; i < own.size(); ++i) sum[i] += theirs[i].value();
       RunningNormalizer saved_norm(t.obs_norm.size());
       read_normalizer(a, "obs_norm", saved_norm);
       largest_shift = std::max(largest_shift, ((saved_norm.mean() - t.obs_norm.mean()).array().abs() / stddev).maxCoeff());
@@ -451,6 +463,37 @@ double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>
   for (std::size_t i = 0; i < own.size(); ++i) own[i].value().copy_(sum[i] / n);
   t.learner->check_parameters(t.iteration);
   return largest_shift;
+}
+
+void read_policy(Trainer::Impl& t, const std::filesystem::path& path) {
+  const std::string where = path.string();
+  if (!std::filesystem::exists(path)) throw Error(where + ": no such checkpoint");
+  torch::NoGradGuard no_grad;
+  try {
+    InputArchive a;
+    open_for(t, path, a, /*other_input_ok=*/false, /*snapshot_ok=*/true);
+    const auto theirs = saved_policy(t, a)->named_parameters();
+    RunningNormalizer norm(t.obs_norm.size(), t.obs_norm.clip(), t.obs_norm.epsilon());
+    read_normalizer(a, "obs_norm", norm);
+    const auto iteration = get(a, "iteration").item<std::int64_t>();
+    const auto samples = get(a, "samples").item<std::int64_t>();
+    torch::Tensor wall;
+    const bool has_wall = a.try_read("wall_seconds", wall);
+    // All read: now this trainer changes, so that an error above leaves it as it was.
+    const auto own = t.learner->policy()->named_parameters();
+    for (std::size_t i = 0; i < own.size(); ++i) own[i].value().copy_(theirs[i].value());
+    t.obs_norm = norm;
+    t.iteration = static_cast<int>(iteration);
+    t.samples = samples;
+    if (has_wall) t.wall_seconds = wall.item<double>();
+    t.learner->check_parameters(t.iteration);
+  } catch (const c10::Error& e) {
+    throw Error(where + ": cannot take its policy (" + std::string(e.what_without_backtrace()) + ")");
+  } catch (const TrainingDiverged& e) {
+    throw Error(where + ": " + e.what());
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
 }
 
 }  // namespace mimic

@@ -356,6 +356,10 @@ double Trainer::average_policy_with(const std::vector<std::filesystem::path>& ch
   return average_policy(*impl_, files);
 }
 
+void Trainer::take_policy_from(const std::filesystem::path& checkpoint) {
+  read_policy(*impl_, std::filesystem::is_directory(checkpoint) ? checkpoint / "checkpoint.pt" : checkpoint);
+}
+
 std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources) {
   const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
   if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))

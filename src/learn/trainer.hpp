@@ -84,6 +84,9 @@ class Trainer {
   // Returns the largest gap between their observation normalisers' means and this one's, in this
   // one's standard deviations (the averaged weights act on inputs normalised as this trainer's).
   double average_policy_with(const std::vector<std::filesystem::path>& checkpoints);
+  // The policy as it was in another checkpoint or snapshot of this run (its weights, observation
+  // normaliser, iteration and samples); value and discriminators stay this trainer's.
+  void take_policy_from(const std::filesystem::path& checkpoint);
   // RUN/snapshots/<iteration>.pt, written every `snapshot_every` iterations: the policy's
   // weights and normaliser, for averaging. The run's snapshots by iteration, oldest first.
   static std::filesystem::path snapshot_path(const std::filesystem::path& run, int iteration);

@@ -73,6 +73,9 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
 // Returns the largest distance, in this normaliser's standard deviations, from its observation
 // mean to a checkpoint's: how far the averaged weights' inputs were normalised differently.
 double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>& checkpoints);
+// The policy, observation normaliser and counters saved in `path` (a checkpoint or snapshot of
+// this config) replace this trainer's; value and discriminators stay. Unchanged on error.
+void read_policy(Trainer::Impl& t, const std::filesystem::path& path);
 // Whether the file is an acting-only export (mimic export), read without building a trainer.
 bool is_exported_checkpoint(const std::filesystem::path& path);
 

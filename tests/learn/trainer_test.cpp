@@ -273,7 +273,8 @@ TEST(Trainer, AnExportedModelActsAsItsRunWithoutOptimiserStateAndIsNotResumed) {
 }
 
 // snapshot_every writes the policy alone at those iterations; averaging makes each weight the
-// mean of the checkpoints' and reports how far their normalisers' means lie apart.
+// mean of the checkpoints' and reports how far their normalisers' means lie apart; a snapshot's
+// policy can be taken as it was.
 TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   const auto dir = test::temp_dir("trainer_snapshots");
   TrainOptions o;
@@ -325,6 +326,16 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   EXPECT_NEAR(shift, expected_gap.maxCoeff(), 1e-9);
   EXPECT_GT(shift, 0.0);
 
+  // The run as it was at iteration 2: the snapshot's policy, normaliser and counters.
+  Trainer earlier(config(text));
+  earlier.load_checkpoint(dir / "run" / "checkpoint.pt");
+  earlier.take_policy_from(snapshots[0].second);
+  expect_identical(params(*earlier.impl().learner->policy()), at2);
+  EXPECT_EQ(earlier.impl().obs_norm.mean(), norm2.mean());
+  EXPECT_EQ(earlier.impl().obs_norm.variance(), norm2.variance());
+  EXPECT_EQ(earlier.iteration(), 2);
+  EXPECT_EQ(earlier.samples(), 2 * 1024);
+
   // The snapshot at the run's own iteration holds its policy: averaging with it changes nothing.
   Trainer same(config(text));
   same.load_checkpoint(dir / "run" / "checkpoint.pt");
@@ -350,6 +361,8 @@ TEST(Trainer, AveragingRefusesAnotherNetworkNamingTheFileAndTheWeight) {
   }
   expect_identical(params(*wide.impl().learner->policy()), before);  // untouched on error
   EXPECT_THROW(wide.average_policy_with({dir / "absent.pt"}), mimic::Error);
+  EXPECT_THROW(wide.take_policy_from(dir / "narrow.pt"), mimic::Error);
+  expect_identical(params(*wide.impl().learner->policy()), before);
 }
 
 // --init-from a run whose observation lacked a part the config now names (reference_root): the
