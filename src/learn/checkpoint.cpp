@@ -419,7 +419,8 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
 
 namespace {
 
-// The policy saved in `a` (a checkpoint or snapshot for this config), in a network of its own.
+// The policy saved in `a` (a checkpoint or snapshot for this config), in a network of its own;
+// an error unless it has this config's shapes and finite weights.
 GaussianPolicy saved_policy(const Trainer::Impl& t, InputArchive& a) {
   InputArchive saved;
   a.read("policy", saved);
@@ -430,6 +431,8 @@ GaussianPolicy saved_policy(const Trainer::Impl& t, InputArchive& a) {
   for (std::size_t i = 0; i < own.size(); ++i)
     if (i >= theirs.size() || theirs[i].key() != own[i].key() || !theirs[i].value().sizes().equals(own[i].value().sizes()))
       throw Error("its policy's '" + own[i].key() + "' does not have this config's shape: not the same network");
+  for (const auto& p : theirs)
+    if (!torch::isfinite(p.value()).all().item<bool>()) throw Error("its policy's '" + p.key() + "' holds NaN or infinity");
   return policy;
 }
 
@@ -461,7 +464,6 @@ double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>
   }
   const double n = static_cast<double>(checkpoints.size() + 1);
   for (std::size_t i = 0; i < own.size(); ++i) own[i].value().copy_(sum[i] / n);
-  t.learner->check_parameters(t.iteration);
   return largest_shift;
 }
 
@@ -479,18 +481,15 @@ void read_policy(Trainer::Impl& t, const std::filesystem::path& path) {
     const auto samples = get(a, "samples").item<std::int64_t>();
     torch::Tensor wall;
     const bool has_wall = a.try_read("wall_seconds", wall);
-    // All read: now this trainer changes, so that an error above leaves it as it was.
+    // All read and checked: only now does this trainer change, so that an error leaves it as it was.
     const auto own = t.learner->policy()->named_parameters();
     for (std::size_t i = 0; i < own.size(); ++i) own[i].value().copy_(theirs[i].value());
     t.obs_norm = norm;
     t.iteration = static_cast<int>(iteration);
     t.samples = samples;
     if (has_wall) t.wall_seconds = wall.item<double>();
-    t.learner->check_parameters(t.iteration);
   } catch (const c10::Error& e) {
     throw Error(where + ": cannot take its policy (" + std::string(e.what_without_backtrace()) + ")");
-  } catch (const TrainingDiverged& e) {
-    throw Error(where + ": " + e.what());
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }

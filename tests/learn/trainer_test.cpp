@@ -343,7 +343,7 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   expect_identical(params(*same.impl().learner->policy()), at4);
 }
 
-TEST(Trainer, AveragingRefusesAnotherNetworkNamingTheFileAndTheWeight) {
+TEST(Trainer, AveragingAndTakingAPolicyRefuseAnotherNetworkOrNaNWeights) {
   const auto dir = test::temp_dir("trainer_average_mismatch");
   Trainer wide(config(walker_config(1, 1) + "snapshot_every: 1\n"));
   std::string narrow_text = walker_config(1, 1);
@@ -362,6 +362,27 @@ TEST(Trainer, AveragingRefusesAnotherNetworkNamingTheFileAndTheWeight) {
   expect_identical(params(*wide.impl().learner->policy()), before);  // untouched on error
   EXPECT_THROW(wide.average_policy_with({dir / "absent.pt"}), mimic::Error);
   EXPECT_THROW(wide.take_policy_from(dir / "narrow.pt"), mimic::Error);
+  expect_identical(params(*wide.impl().learner->policy()), before);
+
+  // A policy with a NaN weight is refused by both, naming the weight; nothing changes.
+  Trainer broken(config(walker_config(1, 1)));
+  {
+    torch::NoGradGuard no_grad;
+    broken.impl().learner->policy()->parameters()[0].view(-1)[0] = std::nan("");
+  }
+  write_policy_snapshot(broken.impl(), dir / "nan.pt");
+  for (bool average : {true, false}) {
+    try {
+      if (average)
+        wide.average_policy_with({dir / "nan.pt"});
+      else
+        wide.take_policy_from(dir / "nan.pt");
+      FAIL() << "a NaN policy was taken";
+    } catch (const mimic::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("nan.pt: its policy's '"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("holds NaN or infinity"), std::string::npos) << e.what();
+    }
+  }
   expect_identical(params(*wide.impl().learner->policy()), before);
 }
 
