@@ -210,6 +210,11 @@ void Trainer::Impl::update_adaptive_init(IterationMetrics& m) {
 
 namespace {
 
+// A run or model directory stands for its checkpoint.pt; a file for itself.
+std::filesystem::path checkpoint_of(const std::filesystem::path& p) {
+  return std::filesystem::is_directory(p) ? p / "checkpoint.pt" : p;
+}
+
 // A resumed run must go on with the config it was started with: its networks, normalisers and
 // discriminators were built from it, and its config.yaml has to keep describing the checkpoint.
 // Another one (another file, an edit) would either fail deep in the checkpoint or, worse,
@@ -243,7 +248,6 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   const std::filesystem::path init_from = opts.init_from;
   const std::vector<std::filesystem::path> discriminators_from = opts.init_discriminators_from;
   impl_ = std::make_unique<Impl>(std::move(cfg), std::move(opts));
-  auto checkpoint_of = [](const std::filesystem::path& p) { return std::filesystem::is_directory(p) ? p / "checkpoint.pt" : p; };
   if (!init_from.empty()) impl_->sources_from_init = read_weights(*impl_, checkpoint_of(init_from));
   if (!discriminators_from.empty()) {
     std::vector<std::filesystem::path> checkpoints;
@@ -352,12 +356,12 @@ std::vector<std::pair<int, std::filesystem::path>> Trainer::policy_snapshots(con
 
 double Trainer::average_policy_with(const std::vector<std::filesystem::path>& checkpoints) {
   std::vector<std::filesystem::path> files;
-  for (const auto& p : checkpoints) files.push_back(std::filesystem::is_directory(p) ? p / "checkpoint.pt" : p);
+  for (const auto& p : checkpoints) files.push_back(checkpoint_of(p));
   return average_policy(*impl_, files);
 }
 
 void Trainer::take_policy_from(const std::filesystem::path& checkpoint) {
-  read_policy(*impl_, std::filesystem::is_directory(checkpoint) ? checkpoint / "checkpoint.pt" : checkpoint);
+  read_policy(*impl_, checkpoint_of(checkpoint));
 }
 
 std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources) {
