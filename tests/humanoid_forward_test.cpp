@@ -715,3 +715,21 @@ TEST(HumanoidForward, MaxDriftNeedsMocapStarts) {
   EXPECT_NE(message.find("'env.max_drift'"), std::string::npos) << message;
   EXPECT_NE(factory_error(r, "{name: humanoid_forward, max_drift: -1}").find("max_drift"), std::string::npos);
 }
+
+// env.pd_limit reaches the simulation, in both humanoid environments; Spring by default (the
+// committed models were trained under it); anything else is an error naming the key.
+TEST(HumanoidForward, PdLimitKeyReachesTheWorld) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  auto limit_of = [&](const std::string& env_yaml) {
+    const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
+    return dynamic_cast<const CharacterEnv&>(*env).world().config().pd_limit;
+  };
+  EXPECT_EQ(limit_of("{name: humanoid_forward, init: fixed}"), PdLimit::Spring);
+  EXPECT_EQ(limit_of("{name: humanoid_forward, init: fixed, pd_limit: total}"), PdLimit::Total);
+  EXPECT_EQ(limit_of("{name: tracking}"), PdLimit::Spring);
+  EXPECT_EQ(limit_of("{name: tracking, pd_limit: total}"), PdLimit::Total);
+  const std::string bad = factory_error(yaml, "{name: humanoid_forward, pd_limit: both}");
+  EXPECT_NE(bad.find("pd_limit"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("total"), std::string::npos) << bad;
+}

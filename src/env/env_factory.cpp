@@ -74,6 +74,10 @@ ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader,
   return p;
 }
 
+// What a joint's torque limit bounds (sim/world.hpp PdLimit): `spring`, the default the committed
+// models were trained under, or `total`, DeepMimic's rule.
+PdLimit read_pd_limit(ConfigSection& s) { return s.choice("pd_limit", "spring", {"spring", "total"}) == "total" ? PdLimit::Total : PdLimit::Spring; }
+
 EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   HumanoidForwardConfig c;
   const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
@@ -92,6 +96,7 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
   c.fall_links = s.texts("fall_links", c.fall_links);
   c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
+  c.pd_limit = read_pd_limit(s);
   if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
     reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
   c.observations.names = s.texts("observations", c.observations.names);
@@ -122,6 +127,7 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.observations.names = s.texts("observations", c.observations.names);
   c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
   c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);
+  c.sim.pd_limit = read_pd_limit(s);
   c.projectiles = read_projectiles(s, reader, "env.projectiles");
   ConfigSection w(reader, s.child("weights"), "env.weights");
   c.weights = {w.number("pose", c.weights.pose, 0, 1e6), w.number("velocity", c.weights.velocity, 0, 1e6),

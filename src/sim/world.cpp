@@ -169,20 +169,28 @@ void World::apply_pd() {
   // gains at 600 Hz; the damping part is MuJoCo's joint damping, integrated implicitly.
   const Skeleton& sk = ch_.skeleton;
   const double dt = m_->opt.timestep;
+  const bool total = cfg_.pd_limit == PdLimit::Total;
+  // One DoF's applied force. Under `Total` the limit bounds spring minus damping, and the damping
+  // MuJoCo is about to subtract is added back: below the limit this is the spring alone, as under
+  // `Spring`; at the limit the net force is the limit, however fast the joint turns.
+  auto force = [&](double spring, double kd, double lim, double qvel) {
+    if (!total) return std::clamp(spring, -lim, lim);
+    return std::clamp(spring - kd * qvel, -lim, lim) + kd * qvel;
+  };
   for (std::size_t j = 1; j < sk.joints.size(); ++j) {
     const Joint& jt = sk.joints[j];
     const int a = qpos_[j], v = dof_[j];
-    const double kp = ch_.gains[j].kp, lim = jt.torque_limit > 0 ? jt.torque_limit : 1e9;
+    const double kp = ch_.gains[j].kp, kd = ch_.gains[j].kd, lim = jt.torque_limit > 0 ? jt.torque_limit : 1e9;
     if (jt.type == JointType::Spherical) {
       const Quat q(d_->qpos[a], d_->qpos[a + 1], d_->qpos[a + 2], d_->qpos[a + 3]);
       const Vec3 w(d_->qvel[v], d_->qvel[v + 1], d_->qvel[v + 2]);
       const Quat predicted = (q * rotvec_to_quat(w * dt)).normalized();
       const Vec3 err = quat_to_rotvec(predicted.conjugate() * target_[j]);
-      for (int k = 0; k < 3; ++k) d_->qfrc_applied[v + k] = std::clamp(kp * err[k], -lim, lim);
+      for (int k = 0; k < 3; ++k) d_->qfrc_applied[v + k] = force(kp * err[k], kd, lim, w[k]);
     } else if (jt.type == JointType::Revolute) {
       const double predicted = d_->qpos[a] + dt * d_->qvel[v];
       const double err = target_angle_[j] - predicted;
-      d_->qfrc_applied[v] = std::clamp(kp * err, -lim, lim);
+      d_->qfrc_applied[v] = force(kp * err, kd, lim, d_->qvel[v]);
     }
   }
 }

@@ -13,9 +13,16 @@ struct mjData_;
 
 namespace mimic {
 
+// What a joint's torque limit bounds. `Spring`: the spring part alone, the damping (MuJoCo's joint
+// damping) unbounded, so a joint driven at its limit stops speeding up at limit / kd rad/s (2-4 rad/s
+// for DeepMimic's humanoid). `Total`: spring and damping together, as DeepMimic's PD controllers,
+// so a joint swings as fast as its torque can accelerate it (its run asks 10-15 rad/s).
+enum class PdLimit { Spring, Total };
+
 struct SimConfig {
   double physics_hz = 600.0;
   double control_hz = 30.0;
+  PdLimit pd_limit = PdLimit::Spring;
 };
 
 class World {
@@ -46,7 +53,8 @@ class World {
   void write_pose(const Pose& pose, mjData_* other) const;
   // The current velocities, as set_state takes them (root in the world frame, joints in their own).
   PoseVelocity velocity() const;
-  // PD targets: one rotation per joint (root ignored). Torques are clamped to torque limits.
+  // PD targets: one rotation per joint (root ignored). Torques are clamped to torque limits
+  // (SimConfig::pd_limit says which part).
   void set_pd_targets(const Pose& targets);
   // Advances one control step (physics_hz / control_hz physics steps).
   void step();
