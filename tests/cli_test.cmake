@@ -96,6 +96,7 @@ endif()
 if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   run_ok(motion info ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${LAST_OUT}" "39 at 30.001 Hz = 1.267 s, loop wrap")
+  expect_in("${LAST_OUT}" "fastest     left_shoulder 15.1, right_shoulder 6.9, right_knee 6.4 rad/s")
   run_ok(motion retarget ${DATA}/cmu-bvh/131_01.bvh --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml
          --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/cmu_walk.txt)
   expect_in("${LAST_OUT}" "end-effector error")

@@ -180,6 +180,27 @@ TEST(Kinematics, VelocitiesOfAConstantSpinAndDrift) {
   }
 }
 
+// The left leg turns 0.1, 0.4, then 0.2 rad about x between frames at 20 fps (2, 8, 4 rad/s),
+// the right one 0.05 rad about y once (1 rad/s); the root's own spin is not a joint's.
+TEST(Kinematics, PeakJointSpeedsAreTheFastestTurnBetweenFrames) {
+  Clip c;
+  c.skeleton = tiny_skeleton();
+  c.fps = 20;
+  const double left[] = {0.0, 0.1, 0.5, 0.7}, right[] = {0.0, 0.0, 0.05, 0.05};
+  for (int i = 0; i < 4; ++i) {
+    Pose p = rest_pose(c.skeleton, Vec3(0, 0, 1));
+    p.rot[0] = axis_rotation('z', 1.0 * i);
+    p.rot[1] = axis_rotation('x', left[i]);
+    p.rot[2] = axis_rotation('y', right[i]);
+    c.frames.push_back(p);
+  }
+  const std::vector<double> peak = peak_joint_speeds(c);
+  ASSERT_EQ(peak.size(), 3u);
+  EXPECT_EQ(peak[0], 0.0);
+  EXPECT_NEAR(peak[1], 8.0, 1e-9);
+  EXPECT_NEAR(peak[2], 1.0, 1e-9);
+}
+
 TEST(Kinematics, WrapClipContinuesWithDrift) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);

@@ -1,8 +1,10 @@
 // mimic motion info|convert|mirror|retarget|plot
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
@@ -43,16 +45,25 @@ std::string clip_summary(const Clip& clip) {
     revolute += j.type == JointType::Revolute;
     fixed += j.type == JointType::Fixed;
   }
+  // The three fastest joints: what the servos must reach (docs/simulation.md, pd_limit).
+  const std::vector<double> speed = peak_joint_speeds(clip);
+  std::vector<std::size_t> order(speed.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return speed[a] > speed[b]; });
+  std::string fastest;
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, order.size()) && speed[order[i]] > 0; ++i)
+    fastest += fmt::format("{}{} {:.1f}", i ? ", " : "", clip.skeleton.joints[order[i]].name, speed[order[i]]);
   return fmt::format(
       "clip        {}\n"
       "skeleton    {} joints ({} spherical, {} revolute, {} fixed), {} DoF, {} sites\n"
       "frames      {} at {:.3f} Hz = {:.3f} s, loop {}\n"
       "root height {:.3f} .. {:.3f} m; all points {:.3f} .. {:.3f} m\n"
-      "travel      {:.3f} m on the ground over the clip, heading {:+.0f} deg\n",
+      "travel      {:.3f} m on the ground over the clip, heading {:+.0f} deg\n"
+      "fastest     {} rad/s (joints, frame to frame)\n",
       clip.name, clip.skeleton.num_joints(), spherical, revolute, fixed, clip.skeleton.dof_count(), clip.skeleton.sites.size(),
       clip.num_frames(), clip.fps, clip.duration(), to_string(clip.loop), root_lo, root_hi, lowest, highest,
       std::hypot(travel.x(), travel.y()),
-      rad_to_deg(heading_angle(clip.frames.back().rot[0]) - heading_angle(clip.frames.front().rot[0])));
+      rad_to_deg(heading_angle(clip.frames.back().rot[0]) - heading_angle(clip.frames.front().rot[0])), fastest.empty() ? "-" : fastest);
 }
 
 void write_motion(const Clip& clip, const std::filesystem::path& out) {

@@ -65,6 +65,15 @@ PoseVelocity pose_velocity(const Pose& a, const Pose& b, double dt) {
   return v;
 }
 
+std::vector<double> peak_joint_speeds(const Clip& clip) {
+  std::vector<double> peak(clip.skeleton.joints.size(), 0.0);
+  for (std::size_t f = 1; f < clip.frames.size(); ++f) {
+    const PoseVelocity v = pose_velocity(clip.frames[f - 1], clip.frames[f], 1.0 / clip.fps);
+    for (std::size_t j = 1; j < peak.size(); ++j) peak[j] = std::max(peak[j], v.joint_ang[j].norm());
+  }
+  return peak;
+}
+
 std::pair<Pose, PoseVelocity> clip_state(const Clip& clip, double t) {
   const double h = 1.0 / clip.fps;  // as clip_velocities: at frame times the two agree
   double t0 = t - h, t1 = t + h;

@@ -31,6 +31,10 @@ PoseVelocity pose_velocity(const Pose& a, const Pose& b, double dt);
 // Central differences inside the clip; at the ends one-sided, or across the seam of a wrap clip.
 std::vector<PoseVelocity> clip_velocities(const Clip& clip);
 
+// Each joint's fastest turn over the clip, frame to frame (rad/s; the root's entry is 0): what a
+// character's servos must reach to play it.
+std::vector<double> peak_joint_speeds(const Clip& clip);
+
 // Pose and velocities of a clip at any time t (central difference over one frame either side,
 // one-sided at the ends of a non-cyclic clip): an initial state for a simulation.
 std::pair<Pose, PoseVelocity> clip_state(const Clip& clip, double t);
