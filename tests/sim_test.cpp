@@ -264,13 +264,14 @@ TEST(SimWorld, WritePosePlacesAGhostAsSetStateWouldAndLeavesTheWorldAlone) {
 
 namespace {
 
-// A 1 kg forearm on a 1 t block in zero gravity, its elbow a servo with DeepMimic's elbow gains
-// (kp 300, kd 30, limit 60 N m) driven from rest towards `target` rad for a third of a second,
-// one physics step per control step. The elbow's angle after each step and its fastest speed.
-std::pair<std::vector<double>, double> drive_elbow(PdLimit limit, double target) {
+// A 1 kg forearm on a 1 t block in zero gravity, its joint (`type`: an elbow's hinge, or a ball as
+// a shoulder's) a servo with DeepMimic's elbow gains (kp 300, kd 30, limit 60 N m) driven from rest
+// towards `target` rad about y for a third of a second, one physics step per control step. The
+// joint's angle after each step and its fastest speed.
+std::pair<std::vector<double>, double> drive_joint(JointType type, PdLimit limit, double target) {
   Skeleton sk;
   sk.joints.push_back(Joint{"root", -1, JointType::Free, Vec3::Zero(), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
-  sk.joints.push_back(Joint{"elbow", 0, JointType::Revolute, Vec3::Zero(), Quat::Identity(), Vec3::UnitY(), {}, 60.0, false});
+  sk.joints.push_back(Joint{"elbow", 0, type, Vec3::Zero(), Quat::Identity(), Vec3::UnitY(), {}, 60.0, false});
   sk.sites.push_back(Site{"hand", 1, Vec3(0.25, 0, 0)});
   CharacterModel ch = CharacterModel::from_skeleton(sk, "arm");
   ch.bodies[0].mass = 1000.0;
@@ -282,13 +283,13 @@ std::pair<std::vector<double>, double> drive_elbow(PdLimit limit, double target)
   Pose targets = rest_pose(ch.skeleton);
   targets.rot[1] = Quat(Eigen::AngleAxisd(target, Vec3::UnitY()));
   w.set_pd_targets(targets);
-  const int dof = w.model()->jnt_dofadr[1], qpos = w.model()->jnt_qposadr[1];
+  const int dof = w.model()->jnt_dofadr[1], dofs = type == JointType::Spherical ? 3 : 1;
   std::vector<double> angles;
   double fastest = 0;
   for (int step = 0; step < 200; ++step) {
     w.step();
-    angles.push_back(w.data()->qpos[qpos]);
-    fastest = std::max(fastest, std::abs(w.data()->qvel[dof]));
+    angles.push_back(rotation_distance(Quat::Identity(), w.pose().rot[1]));
+    fastest = std::max(fastest, Eigen::Map<const Eigen::VectorXd>(w.data()->qvel + dof, dofs).norm());
   }
   return {angles, fastest};
 }
@@ -296,21 +297,24 @@ std::pair<std::vector<double>, double> drive_elbow(PdLimit limit, double target)
 }  // namespace
 
 // Under Spring the limit bounds the servo's spring alone and MuJoCo's damping (kd) grows with
-// speed unbounded: driven hard, the elbow settles where kd * speed = limit, 60 / 30 = 2 rad/s.
-// Under Total (DeepMimic's rule) the limit bounds spring minus damping, so the elbow speeds on
+// speed unbounded: driven hard, the joint settles where kd * speed = limit, 60 / 30 = 2 rad/s.
+// Under Total (DeepMimic's rule) the limit bounds spring minus damping, so the joint speeds on
 // until the spring-damper itself balances (kp err = kd speed + limit: over 10 rad/s at 1.5 rad
-// to go). Below the limit the two are the same servo.
+// to go). Below the limit the two are the same servo. Hinges and balls alike.
 TEST(SimWorld, TorqueLimitBoundsTheSpringOrTheWholeServo) {
-  const auto [spring_angles, spring_fastest] = drive_elbow(PdLimit::Spring, 3.0);
-  EXPECT_GT(spring_fastest, 1.95);
-  EXPECT_LT(spring_fastest, 2.0 + 1e-6);
-  const auto [total_angles, total_fastest] = drive_elbow(PdLimit::Total, 3.0);
-  EXPECT_GT(total_fastest, 10.0);
-  EXPECT_LT(total_fastest, 30.0);  // kp * 3 rad = 900 = kd * 30 rad/s: the servo never pushes past
-  EXPECT_GT(total_angles[59], 5.0 * spring_angles[59]);  // after 0.1 s: 1.7 rad against 0.2
-  // 0.05 rad: the spring's 15 N m never reaches the limit.
-  const auto [gentle_spring, a] = drive_elbow(PdLimit::Spring, 0.05);
-  const auto [gentle_total, b] = drive_elbow(PdLimit::Total, 0.05);
-  for (std::size_t i = 0; i < gentle_spring.size(); ++i) ASSERT_NEAR(gentle_spring[i], gentle_total[i], 1e-9) << "step " << i;
-  EXPECT_NEAR(gentle_spring.back(), 0.05, 0.01);
+  for (const JointType type : {JointType::Revolute, JointType::Spherical}) {
+    SCOPED_TRACE(type == JointType::Revolute ? "hinge" : "ball");
+    const auto [spring_angles, spring_fastest] = drive_joint(type, PdLimit::Spring, 3.0);
+    EXPECT_GT(spring_fastest, 1.95);
+    EXPECT_LT(spring_fastest, 2.0 + 1e-6);
+    const auto [total_angles, total_fastest] = drive_joint(type, PdLimit::Total, 3.0);
+    EXPECT_GT(total_fastest, 10.0);
+    EXPECT_LT(total_fastest, 30.0);  // kp * 3 rad = 900 = kd * 30 rad/s: the servo never pushes past
+    EXPECT_GT(total_angles[59], 5.0 * spring_angles[59]);  // after 0.1 s: 1.7 rad against 0.2
+    // 0.05 rad: the spring's 15 N m never reaches the limit.
+    const auto [gentle_spring, a] = drive_joint(type, PdLimit::Spring, 0.05);
+    const auto [gentle_total, b] = drive_joint(type, PdLimit::Total, 0.05);
+    for (std::size_t i = 0; i < gentle_spring.size(); ++i) ASSERT_NEAR(gentle_spring[i], gentle_total[i], 1e-9) << "step " << i;
+    EXPECT_NEAR(gentle_spring.back(), 0.05, 0.01);
+  }
 }
