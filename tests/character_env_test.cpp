@@ -160,6 +160,39 @@ TEST(CharacterEnv, InitStateFromClipHasTheClipsVelocities) {
   EXPECT_NEAR(env.world().data()->qvel[0], vel[10].root_lin.x(), 1e-9);
 }
 
+// The run clip's touchdown at 0.45 of its cycle puts a foot 4.9 cm into the floor. Started there,
+// the contact throws the root upwards (1 m/s after one step where the clip falls at 1 m/s); with
+// lift_starts the start, and its past poses, rise by that depth plus 1 mm and the foot lands.
+TEST(CharacterEnv, LiftStartsRaisesAStartAndItsPastOutOfTheFloor) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto run = test::humanoid3d_motion(ch, "humanoid3d_run.txt");
+  const InitState s = init_state_from_clip(*run, 0.45 * run->duration(), 2, 1.0 / 30);
+  ASSERT_LT(s.velocity.root_lin.z(), -0.9);
+  CharacterEnvConfig cfg;
+  cfg.observations = {{"links"}, 3};
+  CharacterEnv sunk(ch, cfg);
+  const Eigen::VectorXd sunk_obs = sunk.reset(s);
+  EXPECT_NEAR(sunk.world().root_position().z(), s.pose.root_pos.z(), 1e-9);
+  const double depth = sunk.world().ground_penetration();
+  EXPECT_GT(depth, 0.04);
+  cfg.lift_starts = true;
+  CharacterEnv lifted(ch, cfg);
+  const Eigen::VectorXd lifted_obs = lifted.reset(s);
+  EXPECT_NEAR(lifted.world().root_position().z(), s.pose.root_pos.z() + depth + 1e-3, 1e-9);
+  EXPECT_EQ(lifted.world().ground_penetration(), 0.0);
+  // Every frame of the history rises alike: link heights are world heights in the heading frame.
+  const int per_frame = 7 * 15;
+  for (int f = 0; f < 3; ++f)
+    for (int j = 0; j < 15; ++j)
+      EXPECT_NEAR(lifted_obs[f * per_frame + 7 * j + 2] - sunk_obs[f * per_frame + 7 * j + 2], depth + 1e-3, 1e-9) << "frame " << f;
+  const Eigen::VectorXd hold = sunk.action_for(s.pose);
+  sunk.step(hold);
+  lifted.step(hold);
+  EXPECT_GT(sunk.world().velocity().root_lin.z(), 0.8);
+  EXPECT_LT(std::abs(lifted.world().velocity().root_lin.z()), 0.3);
+}
+
 TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

@@ -733,3 +733,18 @@ TEST(HumanoidForward, PdLimitKeyReachesTheWorld) {
   EXPECT_NE(bad.find("pd_limit"), std::string::npos) << bad;
   EXPECT_NE(bad.find("total"), std::string::npos) << bad;
 }
+
+TEST(HumanoidForward, LiftStartsKeyReachesTheEnv) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  auto lifts = [&](const std::string& env_yaml) {
+    const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
+    return dynamic_cast<const CharacterEnv&>(*env).config().lift_starts;
+  };
+  EXPECT_FALSE(lifts("{name: humanoid_forward}"));
+  EXPECT_TRUE(lifts("{name: humanoid_forward, lift_starts: true}"));
+  EXPECT_FALSE(lifts("{name: tracking}"));
+  EXPECT_TRUE(lifts("{name: tracking, lift_starts: true}"));
+  const std::string bad = factory_error(yaml, "{name: tracking, lift_starts: maybe}");
+  EXPECT_NE(bad.find("lift_starts"), std::string::npos) << bad;
+}

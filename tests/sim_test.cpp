@@ -318,3 +318,22 @@ TEST(SimWorld, TorqueLimitBoundsTheSpringOrTheWholeServo) {
     EXPECT_NEAR(gentle_spring.back(), 0.05, 0.01);
   }
 }
+
+// The deepest point of the character inside the floor, from the contacts: the rest pose lowered
+// so its lowest geom is 2 cm under the floor reads 0.02; raised 1 cm above it, 0.
+TEST(SimWorld, GroundPenetrationIsHowDeepTheLowestGeomIsInTheFloor) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  World w(ch);
+  Pose pose = rest_pose(ch.skeleton, Vec3(0, 0, 1.0));
+  w.set_state(pose);
+  const double lowest = geom_z_range(w).first;
+  EXPECT_EQ(w.ground_penetration(), 0.0);  // 1 m up: no contact at all
+  pose.root_pos.z() += -lowest - 0.02;
+  w.set_state(pose);
+  EXPECT_NEAR(geom_z_range(w).first, -0.02, 1e-9);
+  EXPECT_NEAR(w.ground_penetration(), 0.02, 1e-6);
+  pose.root_pos.z() += 0.03;
+  w.set_state(pose);
+  EXPECT_EQ(w.ground_penetration(), 0.0);
+}

@@ -15,6 +15,11 @@ InitState init_state_from_clip(const Clip& clip, double t, int past, double dt) 
 
 namespace {
 
+Pose raised(Pose p, double dz) {
+  p.root_pos.z() += dz;
+  return p;
+}
+
 // The character's model plus the terrain's ground and the projectile pool.
 MjcfOptions model_options(const Terrain& terrain, const CharacterEnvConfig& cfg) {
   MjcfOptions opts;
@@ -148,15 +153,23 @@ Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   // Past poses are placed kinematically only to read their link frames, before the real start.
   const auto keep = static_cast<std::size_t>(obs_.link_history() - 1);
   const std::size_t first = init.past.size() > keep ? init.past.size() - keep : 0;
+  const double lift = start_lift(init.pose);
   for (std::size_t k = first; k < init.past.size(); ++k) {
-    world_.set_state(init.past[k]);
+    world_.set_state(raised(init.past[k], lift));
     history_.push_back(world_.link_frames());
   }
-  world_.set_state(init.pose, &init.velocity);
+  world_.set_state(raised(init.pose, lift), &init.velocity);
   world_.set_pd_targets(init.pose);
   if (launcher_) launcher_->reset(world_);
   history_.push_back(world_.link_frames());
   return observe();
+}
+
+double CharacterEnv::start_lift(const Pose& pose) {
+  if (!cfg_.lift_starts) return 0.0;
+  world_.set_state(pose);
+  const double depth = world_.ground_penetration();
+  return depth > 0 ? depth + kStartLiftPad : 0.0;
 }
 
 InitState CharacterEnv::state_on_clip(const Clip& clip, double t) const {

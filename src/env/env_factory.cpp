@@ -97,6 +97,7 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.fall_links = s.texts("fall_links", c.fall_links);
   c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
   c.pd_limit = read_pd_limit(s);
+  c.lift_starts = s.boolean("lift_starts", c.lift_starts);
   if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
     reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
   c.observations.names = s.texts("observations", c.observations.names);
@@ -128,6 +129,7 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
   c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);
   c.sim.pd_limit = read_pd_limit(s);
+  c.lift_starts = s.boolean("lift_starts", c.lift_starts);
   c.projectiles = read_projectiles(s, reader, "env.projectiles");
   ConfigSection w(reader, s.child("weights"), "env.weights");
   c.weights = {w.number("pose", c.weights.pose, 0, 1e6), w.number("velocity", c.weights.velocity, 0, 1e6),

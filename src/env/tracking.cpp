@@ -150,6 +150,7 @@ std::unique_ptr<CharacterEnv> make_tracking_env(const CharacterModel& ch, std::s
   env_cfg.fall_links = cfg.fall_links;
   env_cfg.fall_height = cfg.fall_height;
   env_cfg.max_drift = cfg.max_drift;
+  env_cfg.lift_starts = cfg.lift_starts;
   env_cfg.projectiles = cfg.projectiles;
   auto env = std::make_unique<TrackingEnv>(ch, env_cfg, clip, cfg);
   if (cfg.init == TrackingConfig::Init::Reference) {

@@ -77,6 +77,7 @@ struct TrackingConfig {
   bool early_termination = true;   // off for contact-rich clips (roll, get-up)
   double fall_height = 0.5;        // a fall also below this fraction of the reference's root height (0: off)
   double max_drift = 0.0;          // > 0: metres from the reference's root that end an episode (Drift)
+  bool lift_starts = false;        // raise starts out of the floor (CharacterEnvConfig)
   std::vector<std::string> fall_links;  // empty: the character's own choice
   ObservationConfig observations{.names = {"full_state", "phase"}};
   SimConfig sim;

@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -236,6 +237,19 @@ std::vector<bool> World::ground_contacts() const {
     }
   }
   return touching;
+}
+
+double World::ground_penetration() const {
+  double depth = 0.0;
+  for (int c = 0; c < d_->ncon; ++c) {
+    const mjContact& con = d_->contact[c];
+    const int b1 = m_->geom_bodyid[con.geom1], b2 = m_->geom_bodyid[con.geom2];
+    if (b1 != 0 && b2 != 0) continue;  // not against the world body (floor, terrain)
+    const int other = b1 == 0 ? b2 : b1;
+    if (std::find(body_.begin(), body_.end(), other) == body_.end()) continue;  // a projectile
+    depth = std::max(depth, -static_cast<double>(con.dist));
+  }
+  return depth;
 }
 
 }  // namespace mimic

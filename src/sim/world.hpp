@@ -64,6 +64,9 @@ class World {
   Vec3 centre_of_mass() const;
   // Per joint: does its body touch the floor (or another non-character geom)?
   std::vector<bool> ground_contacts() const;
+  // How far the character's bodies reach into the floor (or another world-fixed geom) in the
+  // current state, metres; 0 when none does. Read from the contacts of the last mj_forward.
+  double ground_penetration() const;
 
   mjModel_* model() const { return m_; }
   mjData_* data() const { return d_; }
