@@ -52,6 +52,15 @@ double World::time() const { return d_->time; }
 
 namespace {
 
+// The body a contact presses against the world body (the floor, terrain), or -1 for a contact
+// between two other bodies: ground_contacts' and ground_penetration's shared test.
+int body_against_world(const mjModel* m, const mjContact& con) {
+  const int b1 = m->geom_bodyid[con.geom1], b2 = m->geom_bodyid[con.geom2];
+  if (b1 == 0 && b2 != 0) return b2;
+  if (b2 == 0 && b1 != 0) return b1;
+  return -1;
+}
+
 // A pose as MuJoCo coordinates in `d` (`qpos` holds each joint's address): set_state's and
 // write_pose's shared half.
 void write_qpos(const Skeleton& sk, const std::vector<int>& qpos, const Pose& pose, mjData* d) {
@@ -229,12 +238,9 @@ Vec3 World::centre_of_mass() const {
 std::vector<bool> World::ground_contacts() const {
   std::vector<bool> touching(ch_.skeleton.joints.size(), false);
   for (int c = 0; c < d_->ncon; ++c) {
-    const mjContact& con = d_->contact[c];
-    const int b1 = m_->geom_bodyid[con.geom1], b2 = m_->geom_bodyid[con.geom2];
-    for (std::size_t j = 0; j < body_.size(); ++j) {
-      // Contacts between the character and anything that is not the character.
-      if ((b1 == body_[j] && b2 == 0) || (b2 == body_[j] && b1 == 0)) touching[j] = true;
-    }
+    const int other = body_against_world(m_, d_->contact[c]);
+    for (std::size_t j = 0; j < body_.size(); ++j)
+      if (other >= 0 && body_[j] == other) touching[j] = true;
   }
   return touching;
 }
@@ -243,10 +249,8 @@ double World::ground_penetration() const {
   double depth = 0.0;
   for (int c = 0; c < d_->ncon; ++c) {
     const mjContact& con = d_->contact[c];
-    const int b1 = m_->geom_bodyid[con.geom1], b2 = m_->geom_bodyid[con.geom2];
-    if (b1 != 0 && b2 != 0) continue;  // not against the world body (floor, terrain)
-    const int other = b1 == 0 ? b2 : b1;
-    if (std::find(body_.begin(), body_.end(), other) == body_.end()) continue;  // a projectile
+    const int other = body_against_world(m_, con);
+    if (other < 0 || std::find(body_.begin(), body_.end(), other) == body_.end()) continue;  // a projectile's
     depth = std::max(depth, -static_cast<double>(con.dist));
   }
   return depth;
