@@ -193,6 +193,56 @@ TEST(CharacterEnv, LiftStartsRaisesAStartAndItsPastOutOfTheFloor) {
   EXPECT_LT(std::abs(lifted.world().velocity().root_lin.z()), 0.3);
 }
 
+// Frame differences give the run clip's touchdown (0.5 of its cycle) an angular momentum of
+// 9 kg m^2/s and a sideways com velocity of 0.46 m/s for two frames; averaged over +-0.1 s they are
+// under 2.5 and 0.2. A start smoothed so keeps its pose, joint velocities and com's vertical velocity,
+// and, held on the clip's targets, strays sideways half as far in 0.3 s as a start with the
+// instant's momentum. A clip whose momentum does not change (a pose sliding at 3 m/s) is left alone.
+TEST(CharacterEnv, StartMomentumWindowSmoothsTheRunsTouchdownSpike) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto run = test::humanoid3d_motion(ch, "humanoid3d_run.txt");
+  const double t = 0.5 * run->duration();
+  CharacterEnvConfig cfg;
+  cfg.observations = {{"links"}, 3};
+  CharacterEnv raw_env(ch, cfg);
+  cfg.start_momentum_window = 0.1;
+  CharacterEnv smooth_env(ch, cfg);
+  const InitState raw = raw_env.state_on_clip(*run, t), smooth = smooth_env.state_on_clip(*run, t);
+  const BodyMomentum before = raw_env.world().momentum_of(raw.pose, raw.velocity);
+  const BodyMomentum after = smooth_env.world().momentum_of(smooth.pose, smooth.velocity);
+  EXPECT_GT(before.angular.norm(), 8.0);
+  EXPECT_LT(after.angular.norm(), 2.5);
+  EXPECT_GT(std::abs(before.com_velocity.y()), 0.4);
+  EXPECT_LT(std::abs(after.com_velocity.y()), 0.2);
+  EXPECT_NEAR(after.com_velocity.z(), before.com_velocity.z(), 1e-9);
+  for (std::size_t j = 1; j < raw.velocity.joint_ang.size(); ++j) EXPECT_EQ(smooth.velocity.joint_ang[j], raw.velocity.joint_ang[j]);
+  EXPECT_EQ(smooth.pose.root_pos, raw.pose.root_pos);
+  ASSERT_EQ(smooth.past.size(), raw.past.size());
+  auto sideways = [&](CharacterEnv& env, const InitState& s) {
+    env.reset(s);
+    for (int k = 1; k <= 9; ++k) env.step(env.action_for(run->sample(t + k / 30.0)));
+    return std::abs(env.world().centre_of_mass().y() - before.com.y());
+  };
+  const double raw_stray = sideways(raw_env, raw), smooth_stray = sideways(smooth_env, smooth);
+  EXPECT_GT(raw_stray, 0.1);
+  EXPECT_LT(smooth_stray, 0.7 * raw_stray) << raw_stray;
+
+  Clip slide;
+  slide.skeleton = run->skeleton;
+  for (int f = 0; f < 30; ++f) {
+    Pose p = run->frames[0];
+    p.root_pos.x() += 0.1 * f;
+    slide.frames.push_back(p);
+  }
+  const InitState plain = raw_env.state_on_clip(slide, 0.5), kept = smooth_env.state_on_clip(slide, 0.5);
+  EXPECT_LT((kept.velocity.root_lin - plain.velocity.root_lin).norm(), 1e-9);
+  EXPECT_LT((kept.velocity.root_ang - plain.velocity.root_ang).norm(), 1e-9);
+  EXPECT_NEAR(kept.velocity.root_lin.x(), 3.0, 1e-9);
+  InitState s = raw;
+  EXPECT_THROW(smooth_start_momentum(raw_env.world(), *run, t, 0.0, s), Error);
+}
+
 TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

@@ -748,3 +748,16 @@ TEST(HumanoidForward, LiftStartsKeyReachesTheEnv) {
   const std::string bad = factory_error(yaml, "{name: tracking, lift_starts: maybe}");
   EXPECT_NE(bad.find("lift_starts"), std::string::npos) << bad;
 }
+
+TEST(HumanoidForward, StartMomentumWindowKeyReachesTheEnv) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  auto window = [&](const std::string& env_yaml) {
+    const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
+    return dynamic_cast<const CharacterEnv&>(*env).config().start_momentum_window;
+  };
+  EXPECT_EQ(window("{name: humanoid_forward}"), 0.0);
+  EXPECT_EQ(window("{name: humanoid_forward, start_momentum_window: 0.1}"), 0.1);
+  const std::string bad = factory_error(yaml, "{name: humanoid_forward, start_momentum_window: -1}");
+  EXPECT_NE(bad.find("start_momentum_window"), std::string::npos) << bad;
+}

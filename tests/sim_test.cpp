@@ -337,3 +337,44 @@ TEST(SimWorld, GroundPenetrationIsHowDeepTheLowestGeomIsInTheFloor) {
   w.set_state(pose);
   EXPECT_EQ(w.ground_penetration(), 0.0);
 }
+
+// Two spheres 1 m apart (radius 0.1 m; 2 kg at the root, 1 kg on a hinge about y), worked by hand:
+// centre of mass 1/3 m from the root; the pair moving at 0.5 m/s along x and spinning at 1 rad/s
+// about z has com velocity (0.5, 1/3, 0) and angular momentum about the com
+//   2 (1/3)^2 + 1 (2/3)^2 + 2/5 (2 + 1) 0.1^2 = 2/3 + 0.012 kg m^2/s about z,
+// the inertia about z and y; about x only the spheres' own 0.012. The hinge alone turning at
+// 2 rad/s spins the small sphere about its own centre: 2/5 * 1 * 0.01 * 2 = 0.008 about y, the com still.
+TEST(SimWorld, MomentumOfTwoSpheresIsTheHandWorkedOne) {
+  Skeleton sk;
+  sk.joints.push_back(Joint{"root", -1, JointType::Free, Vec3::Zero(), Quat::Identity(), Vec3::UnitZ(), {}, 0, false});
+  sk.joints.push_back(Joint{"elbow", 0, JointType::Revolute, Vec3(1, 0, 0), Quat::Identity(), Vec3::UnitY(), {}, 60.0, false});
+  CharacterModel ch = CharacterModel::from_skeleton(sk, "dumbbell");
+  for (std::size_t j = 0; j < 2; ++j) {
+    ch.bodies[j].shape = "sphere";
+    ch.bodies[j].size = Vec3::Constant(0.2);
+    ch.bodies[j].pos = Vec3::Zero();
+    ch.bodies[j].rot = Quat::Identity();
+  }
+  ch.bodies[0].mass = 2.0;
+  ch.bodies[1].mass = 1.0;
+  const World w(ch);
+  const Pose pose = rest_pose(ch.skeleton, Vec3(0, 0, 2));
+  PoseVelocity v;
+  v.joint_ang.assign(2, Vec3::Zero());
+  v.root_lin = Vec3(0.5, 0, 0);
+  v.root_ang = Vec3(0, 0, 1);
+  const BodyMomentum m = w.momentum_of(pose, v);
+  EXPECT_NEAR(m.mass, 3.0, 1e-12);
+  EXPECT_LT((m.com - Vec3(1.0 / 3, 0, 2)).norm(), 1e-9);
+  EXPECT_LT((m.com_velocity - Vec3(0.5, 1.0 / 3, 0)).norm(), 1e-9);
+  EXPECT_LT((m.angular - Vec3(0, 0, 2.0 / 3 + 0.012)).norm(), 1e-9);
+  const Eigen::Matrix3d inertia = Eigen::Vector3d(0.012, 2.0 / 3 + 0.012, 2.0 / 3 + 0.012).asDiagonal();
+  EXPECT_LT((m.inertia - inertia).norm(), 1e-9) << m.inertia;
+  v.root_lin = v.root_ang = Vec3::Zero();
+  v.joint_ang[1] = Vec3(0, 2, 0);
+  const BodyMomentum hinge = w.momentum_of(pose, v);
+  EXPECT_LT(hinge.com_velocity.norm(), 1e-12);
+  EXPECT_LT((hinge.angular - Vec3(0, 0.008, 0)).norm(), 1e-9);
+  EXPECT_LT(w.velocity().root_lin.norm(), 1e-12);  // the world's own state: still at rest
+  EXPECT_THROW((void)w.momentum_of(Pose{}, v), Error);
+}

@@ -13,6 +13,26 @@ InitState init_state_from_clip(const Clip& clip, double t, int past, double dt) 
   return s;
 }
 
+void smooth_start_momentum(const World& world, const Clip& clip, double t, double window, InitState& s) {
+  if (!(window > 0)) throw Error("start momentum window must be positive seconds");
+  constexpr int kSide = 8;  // states each side of t
+  Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+  for (int k = -kSide; k <= kSide; ++k) {
+    const auto [pose, vel] = clip_state(clip, t + window * k / kSide);
+    const BodyMomentum m = world.momentum_of(pose, vel);
+    linear += m.com_velocity / (2 * kSide + 1);
+    angular += m.angular / (2 * kSide + 1);
+  }
+  const BodyMomentum now = world.momentum_of(s.pose, s.velocity);
+  // A spin w of the whole body about its centre of mass adds inertia * w to the angular momentum
+  // about it and moves every point, the root too, by w x (point - com); the com does not move.
+  const Vec3 spin = now.inertia.ldlt().solve(angular - now.angular);
+  s.velocity.root_ang += spin;
+  s.velocity.root_lin += spin.cross(s.pose.root_pos - now.com);
+  s.velocity.root_lin.x() += linear.x() - now.com_velocity.x();
+  s.velocity.root_lin.y() += linear.y() - now.com_velocity.y();
+}
+
 namespace {
 
 Pose raised(Pose p, double dz) {
@@ -173,7 +193,9 @@ double CharacterEnv::start_lift(const Pose& pose) {
 }
 
 InitState CharacterEnv::state_on_clip(const Clip& clip, double t) const {
-  return init_state_from_clip(clip, t, obs_.link_history() - 1, 1.0 / cfg_.sim.control_hz);
+  InitState s = init_state_from_clip(clip, t, obs_.link_history() - 1, 1.0 / cfg_.sim.control_hz);
+  if (cfg_.start_momentum_window > 0) smooth_start_momentum(world_, clip, t, cfg_.start_momentum_window, s);
+  return s;
 }
 
 std::vector<ObservationSlice> CharacterEnv::observation_layout() const {

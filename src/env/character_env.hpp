@@ -43,6 +43,10 @@ struct CharacterEnvConfig {
   // off its stride. DeepMimic does the same (ResolveCharGroundIntersect). Off by default: the
   // committed models were trained without it.
   bool lift_starts = false;
+  // > 0: a start drawn from a clip (state_on_clip) carries the clip's whole-body momentum averaged
+  // over t +- this many seconds, not the instant's (smooth_start_momentum). 0: off, the default
+  // the committed models were trained with.
+  double start_momentum_window = 0.0;
   TerrainSpec terrain;             // flat by default; every kind starts flat around the origin
   std::vector<PushSpec> pushes;    // times from each episode's start
   ProjectileSpec projectiles;      // seed 004's projectile test when enabled
@@ -76,6 +80,15 @@ struct InitState {
 // The clip's state at `t`, with the `past` poses at t - past * dt, ..., t - dt (before the clip's
 // start a wrapping clip wraps, others hold their first frame).
 InitState init_state_from_clip(const Clip& clip, double t, int past = 0, double dt = 0.0);
+// Gives a start `s` (the clip's state at `t`) the clip's whole-body momentum averaged over
+// t +- window (17 evenly spaced states): the angular momentum about the centre of mass by a rigid
+// spin of the whole body about it, the horizontal linear momentum by a shift of every link's
+// velocity; joint velocities and the com's vertical velocity stay. Why: velocities from frame
+// differences are not a physical state at every phase. At the run clip's touchdowns the angular
+// momentum is 7-9 kg m^2/s and the com moves sideways at 0.5 m/s for two frames (about 2 and
+// 0.2-0.3 averaged over +-0.1 s); a simulated start keeps that, and it throws the character off the
+// clip's line. `world` is the character's (read on scratch data). Throws Error unless window > 0.
+void smooth_start_momentum(const World& world, const Clip& clip, double t, double window, InitState& s);
 
 class CharacterEnv : public Env {
  public:
@@ -90,7 +103,8 @@ class CharacterEnv : public Env {
   // Starts from the init sampler's state: by default the reference clip's start, or standing.
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
   Eigen::VectorXd reset(const InitState& init);
-  // The clip's state at `t` with as many past poses as the observation's history uses.
+  // The clip's state at `t` with as many past poses as the observation's history uses, its
+  // momentum smoothed when config().start_momentum_window > 0.
   InitState state_on_clip(const Clip& clip, double t) const;
   StepResult step(const Eigen::VectorXd& action) override;
   const mjModel_* physics_model() const override { return world_.model(); }

@@ -98,6 +98,7 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
   c.pd_limit = read_pd_limit(s);
   c.lift_starts = s.boolean("lift_starts", c.lift_starts);
+  c.start_momentum_window = s.number("start_momentum_window", c.start_momentum_window, 0, 10);
   if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
     reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
   c.observations.names = s.texts("observations", c.observations.names);

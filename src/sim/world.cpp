@@ -26,6 +26,7 @@ World::World(const CharacterModel& ch, const std::string& mjcf, const SimConfig&
 }
 
 World::~World() {
+  if (scratch_) mj_deleteData(scratch_);
   if (d_) mj_deleteData(d_);
   if (m_) mj_deleteModel(m_);
 }
@@ -79,31 +80,70 @@ void write_qpos(const Skeleton& sk, const std::vector<int>& qpos, const Pose& po
   }
 }
 
+// Velocities as MuJoCo's in `d` (`dof` holds each joint's address): set_state's and momentum_of's.
+void write_qvel(const Skeleton& sk, const std::vector<int>& dof, const Pose& pose, const PoseVelocity& vel, mjData* d) {
+  for (std::size_t j = 0; j < sk.joints.size(); ++j) {
+    const int v = dof[j];
+    switch (sk.joints[j].type) {
+      case JointType::Free: {
+        const Vec3 ang_local = pose.rot[j].conjugate() * vel.root_ang;  // MuJoCo: free-joint spin in the body frame
+        for (int k = 0; k < 3; ++k) d->qvel[v + k] = vel.root_lin[k], d->qvel[v + 3 + k] = ang_local[k];
+        break;
+      }
+      case JointType::Spherical: for (int k = 0; k < 3; ++k) d->qvel[v + k] = vel.joint_ang[j][k]; break;
+      case JointType::Revolute: d->qvel[v] = vel.joint_ang[j].dot(sk.joints[j].axis); break;
+      case JointType::Fixed: break;
+    }
+  }
+}
+
+void check_state(const Skeleton& sk, const Pose& pose, const PoseVelocity* vel, const char* who) {
+  if (pose.rot.size() != sk.joints.size()) throw Error(std::string(who) + ": pose has the wrong number of joints");
+  if (vel && vel->joint_ang.size() != sk.joints.size())
+    throw Error(std::string(who) + ": velocities have " + std::to_string(vel->joint_ang.size()) + " joints, the character " +
+                std::to_string(sk.joints.size()));
+}
+
 }  // namespace
 
 void World::set_state(const Pose& pose, const PoseVelocity* vel) {
   const Skeleton& sk = ch_.skeleton;
-  if (pose.rot.size() != sk.joints.size()) throw Error("set_state: pose has the wrong number of joints");
-  if (vel && vel->joint_ang.size() != sk.joints.size())
-    throw Error("set_state: velocities have " + std::to_string(vel->joint_ang.size()) + " joints, the character " +
-                std::to_string(sk.joints.size()));
+  check_state(sk, pose, vel, "set_state");
   mj_resetData(m_, d_);
   write_qpos(sk, qpos_, pose, d_);
-  for (std::size_t j = 0; vel && j < sk.joints.size(); ++j) {
-    const int v = dof_[j];
-    switch (sk.joints[j].type) {
-      case JointType::Free: {
-        const Vec3 ang_local = pose.rot[j].conjugate() * vel->root_ang;  // MuJoCo: free-joint spin in the body frame
-        for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->root_lin[k], d_->qvel[v + 3 + k] = ang_local[k];
-        break;
-      }
-      case JointType::Spherical: for (int k = 0; k < 3; ++k) d_->qvel[v + k] = vel->joint_ang[j][k]; break;
-      case JointType::Revolute: d_->qvel[v] = vel->joint_ang[j].dot(sk.joints[j].axis); break;
-      case JointType::Fixed: break;
-    }
-  }
+  if (vel) write_qvel(sk, dof_, pose, *vel, d_);
   set_targets(pose.rot);
   mj_forward(m_, d_);
+}
+
+BodyMomentum World::momentum_of(const Pose& pose, const PoseVelocity& vel) const {
+  const Skeleton& sk = ch_.skeleton;
+  check_state(sk, pose, &vel, "momentum_of");
+  if (!scratch_) scratch_ = mj_makeData(m_);
+  mjData* s = scratch_;
+  mj_resetData(m_, s);
+  write_qpos(sk, qpos_, pose, s);
+  write_qvel(sk, dof_, pose, vel, s);
+  // The smooth-dynamics stages subtree velocities need; no contacts or forces.
+  mj_kinematics(m_, s);
+  mj_comPos(m_, s);
+  mj_comVel(m_, s);
+  mj_subtreeVel(m_, s);
+  const int root = body_[0];
+  const auto vec = [](const mjtNum* v) { return Vec3(v[0], v[1], v[2]); };
+  BodyMomentum b;
+  b.mass = m_->body_subtreemass[root];
+  b.com = vec(s->subtree_com + 3 * root);
+  b.com_velocity = vec(s->subtree_linvel + 3 * root);
+  b.angular = vec(s->subtree_angmom + 3 * root);
+  for (const int body : body_) {  // each body's inertia moved to the centre of mass (parallel axes)
+    const Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>> rot(s->ximat + 9 * body);
+    const Vec3 r = vec(s->xipos + 3 * body) - b.com;
+    const double mass = m_->body_mass[body];
+    b.inertia += rot * vec(m_->body_inertia + 3 * body).asDiagonal() * rot.transpose() +
+                 mass * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  }
+  return b;
 }
 
 Pose World::pose() const {

@@ -25,6 +25,14 @@ struct SimConfig {
   PdLimit pd_limit = PdLimit::Spring;
 };
 
+// A character's whole-body momentum in one state, in the world frame: mass, centre of mass, its
+// velocity, the angular momentum about it and the inertia tensor about it (SI units).
+struct BodyMomentum {
+  double mass = 0.0;
+  Vec3 com = Vec3::Zero(), com_velocity = Vec3::Zero(), angular = Vec3::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+
 class World {
  public:
   // Builds the MJCF of `ch` and compiles it; throws Error with MuJoCo's message on failure.
@@ -51,6 +59,9 @@ class World {
   // Writes `pose` into `other`, data of this world's model (a ghost to draw), and places its
   // bodies (mj_kinematics); this world's own state is untouched.
   void write_pose(const Pose& pose, mjData_* other) const;
+  // The character's momentum in the state (pose, vel), worked out on scratch data: this world's
+  // own state is untouched. Throws as set_state.
+  BodyMomentum momentum_of(const Pose& pose, const PoseVelocity& vel) const;
   // The current velocities, as set_state takes them (root in the world frame, joints in their own).
   PoseVelocity velocity() const;
   // PD targets: one rotation per joint (root ignored). Torques are clamped to torque limits
@@ -81,6 +92,7 @@ class World {
   int substeps_ = 1;
   mjModel_* m_ = nullptr;
   mjData_* d_ = nullptr;
+  mutable mjData_* scratch_ = nullptr;  // momentum_of's, made on first use
   std::vector<int> body_, qpos_, dof_;  // per skeleton joint; -1 for none
   std::vector<Quat> target_;
   std::vector<double> target_angle_;  // revolute joints' target angles (from target_)
