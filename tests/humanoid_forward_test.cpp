@@ -716,6 +716,16 @@ TEST(HumanoidForward, MaxDriftNeedsMocapStarts) {
   EXPECT_NE(factory_error(r, "{name: humanoid_forward, max_drift: -1}").find("max_drift"), std::string::npos);
 }
 
+namespace {
+
+// The character env's configuration as the factory makes it from an `env` section.
+CharacterEnvConfig made_config(const YamlReader& yaml, const std::string& env_yaml) {
+  const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
+  return dynamic_cast<const CharacterEnv&>(*env).config();
+}
+
+}  // namespace
+
 // env.pd_limit reaches the simulation, in both humanoid environments; Spring by default (the
 // committed models were trained under it); anything else is an error naming the key.
 TEST(HumanoidForward, PdLimitKeyReachesTheWorld) {
@@ -737,10 +747,7 @@ TEST(HumanoidForward, PdLimitKeyReachesTheWorld) {
 TEST(HumanoidForward, LiftStartsKeyReachesTheEnv) {
   MIMIC_NEED_HUMANOID();
   const YamlReader yaml("test.yaml");
-  auto lifts = [&](const std::string& env_yaml) {
-    const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
-    return dynamic_cast<const CharacterEnv&>(*env).config().lift_starts;
-  };
+  auto lifts = [&](const std::string& env_yaml) { return made_config(yaml, env_yaml).lift_starts; };
   EXPECT_FALSE(lifts("{name: humanoid_forward}"));
   EXPECT_TRUE(lifts("{name: humanoid_forward, lift_starts: true}"));
   EXPECT_FALSE(lifts("{name: tracking}"));
@@ -752,10 +759,7 @@ TEST(HumanoidForward, LiftStartsKeyReachesTheEnv) {
 TEST(HumanoidForward, StartMomentumWindowKeyReachesTheEnv) {
   MIMIC_NEED_HUMANOID();
   const YamlReader yaml("test.yaml");
-  auto window = [&](const std::string& env_yaml) {
-    const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
-    return dynamic_cast<const CharacterEnv&>(*env).config().start_momentum_window;
-  };
+  auto window = [&](const std::string& env_yaml) { return made_config(yaml, env_yaml).start_momentum_window; };
   EXPECT_EQ(window("{name: humanoid_forward}"), 0.0);
   EXPECT_EQ(window("{name: humanoid_forward, start_momentum_window: 0.1}"), 0.1);
   const std::string bad = factory_error(yaml, "{name: humanoid_forward, start_momentum_window: -1}");
