@@ -60,7 +60,8 @@ class World {
   // bodies (mj_kinematics); this world's own state is untouched.
   void write_pose(const Pose& pose, mjData_* other) const;
   // The character's momentum in the state (pose, vel), worked out on scratch data: this world's
-  // own state is untouched. Throws as set_state.
+  // own state is untouched, but the scratch is shared, so one thread at a time, as for stepping.
+  // Throws as set_state.
   BodyMomentum momentum_of(const Pose& pose, const PoseVelocity& vel) const;
   // The current velocities, as set_state takes them (root in the world frame, joints in their own).
   PoseVelocity velocity() const;
