@@ -93,6 +93,18 @@ TEST(Render, ClipThatDoesNotFitTheCharacterIsAnError) {
   EXPECT_THROW(render_clip_video(CharacterModel::from_skeleton(small, "small"), jack, test::temp_dir("render_bad") / "x.mp4"), Error);
 }
 
+// The camera follows the root smoothed (0.9 of where it looked, 0.1 of the root), but takes the
+// root as it is at the first frame and after a restart (a new episode back at the start).
+TEST(Render, CameraFollowSmoothsTheRootAndJumpsToItAfterARestart) {
+  CameraFollow follow;
+  EXPECT_EQ(follow.update(Vec3(5, 0, 1)), Vec3(5, 0, 1));
+  const Vec3 second = follow.update(Vec3(6, 1, 1));
+  EXPECT_LT((second - Vec3(5.1, 0.1, 1)).norm(), 1e-12) << second.transpose();
+  follow.restart();
+  EXPECT_EQ(follow.update(Vec3(0, 0, 1)), Vec3(0, 0, 1));
+  EXPECT_LT((follow.update(Vec3(1, 0, 1)) - Vec3(0.1, 0, 1)).norm(), 1e-12);
+}
+
 TEST(LineChart, TicksAreRoundNumbersCoveringTheRange) {
   EXPECT_EQ(mimic::chart_ticks(0, 1000, 5), (std::vector<double>{0, 200, 400, 600, 800, 1000}));
   EXPECT_EQ(mimic::chart_ticks(2.6, 4685, 5), (std::vector<double>{1000, 2000, 3000, 4000}));

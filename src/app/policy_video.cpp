@@ -64,7 +64,7 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   OffscreenRenderer renderer(env->physics_model(), opts.width, opts.height);
   VideoWriter video(out, opts.width, opts.height, fps);
   std::vector<std::uint8_t> rgb;
-  Eigen::Vector3d smoothed = Eigen::Vector3d::Zero();
+  CameraFollow follow;
   double episode_return = 0;
   for (int t = 1; t <= steps; ++t) {
     if (behaviours && !opts.contexts.empty() && t % context_steps == 0) {
@@ -75,11 +75,10 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
     if (t > 1) r = env->step(trainer.act(frames.stacked()));
     episode_return += r.reward();
     frames.push(r.observation);
-    const Eigen::Vector3d root(data->xpos[3], data->xpos[4], data->xpos[5]);  // body 1: the root
-    smoothed = t == 1 ? root : 0.9 * smoothed + 0.1 * root;
+    const Vec3 look = follow.update(Vec3(data->xpos[3], data->xpos[4], data->xpos[5]));  // body 1: the root
     if (t % every == 0) {
       CameraSpec cam = opts.camera;
-      cam.lookat = Vec3(smoothed.x(), smoothed.y(), opts.camera.lookat.z());
+      cam.lookat = Vec3(look.x(), look.y(), opts.camera.lookat.z());
       // A start without a clip (a fixed pose) has no ghost until an episode that starts on one.
       if (ghost) {
         if (const std::optional<Pose> ref = character->reference_pose()) character->world().write_pose(*ref, ghost.get());
@@ -91,6 +90,7 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
       stats.episodes.push_back({episode_return, r.termination});
       episode_return = 0;
       start_episode();
+      follow.restart();
     }
   }
   video.close();

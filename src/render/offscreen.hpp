@@ -20,6 +20,26 @@ struct CameraSpec {
   double elevation = -12.0;  // degrees
 };
 
+// Where a following camera looks: the character's root smoothed over frames (a steady picture of
+// a gait's sway), taken as it is at the first frame and at the first after restart(). A new
+// episode puts the character back at its start; smoothing across that left the camera on empty
+// floor for a second.
+class CameraFollow {
+ public:
+  explicit CameraFollow(double keep = 0.9) : keep_(keep) {}
+  Vec3 update(const Vec3& root) {
+    at_ = fresh_ ? root : Vec3(keep_ * at_ + (1.0 - keep_) * root);
+    fresh_ = false;
+    return at_;
+  }
+  void restart() { fresh_ = true; }
+
+ private:
+  double keep_;
+  Vec3 at_ = Vec3::Zero();
+  bool fresh_ = true;
+};
+
 class OffscreenRenderer {
  public:
   // Throws Error when no headless GL context can be created (the message says why).
