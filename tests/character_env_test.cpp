@@ -206,7 +206,7 @@ TEST(CharacterEnv, StartMomentumWindowSmoothsTheRunsTouchdownSpike) {
   CharacterEnvConfig cfg;
   cfg.observations = {{"links"}, 3};
   CharacterEnv raw_env(ch, cfg);
-  cfg.start_momentum_window = 0.1;
+  cfg.start_momentum.window = 0.1;
   CharacterEnv smooth_env(ch, cfg);
   const InitState raw = raw_env.state_on_clip(*run, t), smooth = smooth_env.state_on_clip(*run, t);
   const BodyMomentum before = raw_env.world().momentum_of(raw.pose, raw.velocity);
@@ -240,7 +240,51 @@ TEST(CharacterEnv, StartMomentumWindowSmoothsTheRunsTouchdownSpike) {
   EXPECT_LT((kept.velocity.root_ang - plain.velocity.root_ang).norm(), 1e-9);
   EXPECT_NEAR(kept.velocity.root_lin.x(), 3.0, 1e-9);
   InitState s = raw;
-  EXPECT_THROW(smooth_start_momentum(raw_env.world(), *run, t, 0.0, s), Error);
+  EXPECT_THROW(smooth_start_momentum(raw_env.world(), *run, t, StartMomentumSmoothing{}, s), Error);
+}
+
+// A median takes out a spike shorter than half the window where a mean only spreads it. The clip:
+// a pose that steps 5 cm sideways between frames 14 and 15 (30 fps). Clip::sample's Catmull-Rom
+// root and central differences over one frame give it, from 14.5 frames, 27/32 m/s sideways. The
+// window +-0.1 s holds 17 states 0.375 frames apart; worked by hand in fractions, their sideways
+// velocities are 0 five times, the spline's overshoot -9/512 and -225/4096 twice each, and eight
+// positive ones: a mean of 8181/34816 m/s and a median of 0.
+// Angular only (linear: false) spins the body about its centre of mass, which leaves the com's
+// velocity as it was; at the run's touchdown the median brings |L| from 9 to under 1 kg m^2/s.
+TEST(CharacterEnv, StartMomentumMedianRemovesAShortSpikeAndAngularOnlyKeepsTheComVelocity) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto run = test::humanoid3d_motion(ch, "humanoid3d_run.txt");
+  CharacterEnvConfig cfg;
+  CharacterEnv env(ch, cfg);
+  Clip step;
+  step.skeleton = run->skeleton;
+  for (int f = 0; f < 30; ++f) {
+    Pose p = run->frames[0];
+    if (f >= 15) p.root_pos.y() += 0.05;
+    step.frames.push_back(p);
+  }
+  const double t = 14.5 / 30;
+  auto sideways = [&](StartMomentumSmoothing smoothing) {
+    InitState s = init_state_from_clip(step, t);
+    smooth_start_momentum(env.world(), step, t, smoothing, s);
+    return env.world().momentum_of(s.pose, s.velocity).com_velocity.y();
+  };
+  EXPECT_NEAR(init_state_from_clip(step, t).velocity.root_lin.y(), 27.0 / 32, 1e-9);
+  using Statistic = StartMomentumSmoothing::Statistic;
+  EXPECT_NEAR(sideways({0.1, Statistic::Mean, true}), 8181.0 / 34816, 1e-9);
+  EXPECT_NEAR(sideways({0.1, Statistic::Median, true}), 0.0, 1e-9);
+  EXPECT_NEAR(sideways({0.1, Statistic::Median, false}), 27.0 / 32, 1e-9);
+
+  const double touchdown = 0.5 * run->duration();
+  const InitState raw = init_state_from_clip(*run, touchdown);
+  InitState angular = raw;
+  smooth_start_momentum(env.world(), *run, touchdown, {0.1, Statistic::Median, false}, angular);
+  const BodyMomentum before = env.world().momentum_of(raw.pose, raw.velocity);
+  const BodyMomentum after = env.world().momentum_of(angular.pose, angular.velocity);
+  EXPECT_LT((after.com_velocity - before.com_velocity).norm(), 1e-9);
+  EXPECT_GT(before.angular.norm(), 8.0);
+  EXPECT_LT(after.angular.norm(), 1.0);
 }
 
 TEST(CharacterEnv, LinkHistoryKeepsTheLastKSteps) {

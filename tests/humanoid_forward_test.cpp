@@ -756,12 +756,26 @@ TEST(HumanoidForward, LiftStartsKeyReachesTheEnv) {
   EXPECT_NE(bad.find("lift_starts"), std::string::npos) << bad;
 }
 
-TEST(HumanoidForward, StartMomentumWindowKeyReachesTheEnv) {
+TEST(HumanoidForward, StartMomentumKeysReachTheEnv) {
   MIMIC_NEED_HUMANOID();
   const YamlReader yaml("test.yaml");
-  auto window = [&](const std::string& env_yaml) { return made_config(yaml, env_yaml).start_momentum_window; };
-  EXPECT_EQ(window("{name: humanoid_forward}"), 0.0);
-  EXPECT_EQ(window("{name: humanoid_forward, start_momentum_window: 0.1}"), 0.1);
+  auto smoothing = [&](const std::string& env_yaml) { return made_config(yaml, env_yaml).start_momentum; };
+  using Statistic = StartMomentumSmoothing::Statistic;
+  const StartMomentumSmoothing plain = smoothing("{name: humanoid_forward}");
+  EXPECT_EQ(plain.window, 0.0);
+  EXPECT_EQ(plain.statistic, Statistic::Mean);
+  EXPECT_TRUE(plain.linear);
+  EXPECT_EQ(smoothing("{name: humanoid_forward, start_momentum_window: 0.1}").window, 0.1);
+  const StartMomentumSmoothing median = smoothing(
+      "{name: humanoid_forward, start_momentum_window: 0.1, start_momentum_statistic: median, start_momentum_linear: false}");
+  EXPECT_EQ(median.statistic, Statistic::Median);
+  EXPECT_FALSE(median.linear);
   const std::string bad = factory_error(yaml, "{name: humanoid_forward, start_momentum_window: -1}");
   EXPECT_NE(bad.find("start_momentum_window"), std::string::npos) << bad;
+  const std::string bad_statistic =
+      factory_error(yaml, "{name: humanoid_forward, start_momentum_window: 0.1, start_momentum_statistic: mode}");
+  EXPECT_NE(bad_statistic.find("start_momentum_statistic"), std::string::npos) << bad_statistic;
+  // Without a window the keys would do nothing: an error, not a silent no-op.
+  const std::string no_window = factory_error(yaml, "{name: humanoid_forward, start_momentum_linear: false}");
+  EXPECT_NE(no_window.find("needs a window"), std::string::npos) << no_window;
 }

@@ -1,5 +1,6 @@
 #include "env/character_env.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -13,22 +14,38 @@ InitState init_state_from_clip(const Clip& clip, double t, int past, double dt) 
   return s;
 }
 
-void smooth_start_momentum(const World& world, const Clip& clip, double t, double window, InitState& s) {
-  if (!(window > 0)) throw Error("start momentum window must be positive seconds");
+void smooth_start_momentum(const World& world, const Clip& clip, double t, const StartMomentumSmoothing& smoothing,
+                           InitState& s) {
+  if (!(smoothing.window > 0)) throw Error("start momentum window must be positive seconds");
   constexpr int kSide = 8;  // states each side of t
-  Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+  constexpr int kStates = 2 * kSide + 1;
+  using States = Eigen::Matrix<double, 3, kStates>;  // one column per state
+  States linears, angulars;
   for (int k = -kSide; k <= kSide; ++k) {
-    const auto [pose, vel] = clip_state(clip, t + window * k / kSide);
+    const auto [pose, vel] = clip_state(clip, t + smoothing.window * k / kSide);
     const BodyMomentum m = world.momentum_of(pose, vel);
-    linear += m.com_velocity / (2 * kSide + 1);
-    angular += m.angular / (2 * kSide + 1);
+    linears.col(k + kSide) = m.com_velocity;
+    angulars.col(k + kSide) = m.angular;
   }
+  auto summary = [&](const States& v) -> Vec3 {
+    if (smoothing.statistic == StartMomentumSmoothing::Statistic::Mean) return v.rowwise().mean();
+    Vec3 out;
+    for (int c = 0; c < 3; ++c) {
+      Eigen::Matrix<double, 1, kStates> row = v.row(c);
+      std::nth_element(row.data(), row.data() + kSide, row.data() + kStates);
+      out[c] = row[kSide];
+    }
+    return out;
+  };
+  const Vec3 angular = summary(angulars);
   const BodyMomentum now = world.momentum_of(s.pose, s.velocity);
   // A spin w of the whole body about its centre of mass adds inertia * w to the angular momentum
   // about it and moves every point, the root too, by w x (point - com); the com does not move.
   const Vec3 spin = now.inertia.ldlt().solve(angular - now.angular);
   s.velocity.root_ang += spin;
   s.velocity.root_lin += spin.cross(s.pose.root_pos - now.com);
+  if (!smoothing.linear) return;
+  const Vec3 linear = summary(linears);
   s.velocity.root_lin.x() += linear.x() - now.com_velocity.x();
   s.velocity.root_lin.y() += linear.y() - now.com_velocity.y();
 }
@@ -194,7 +211,7 @@ double CharacterEnv::start_lift(const Pose& pose) {
 
 InitState CharacterEnv::state_on_clip(const Clip& clip, double t) const {
   InitState s = init_state_from_clip(clip, t, obs_.link_history() - 1, 1.0 / cfg_.sim.control_hz);
-  if (cfg_.start_momentum_window > 0) smooth_start_momentum(world_, clip, t, cfg_.start_momentum_window, s);
+  if (cfg_.start_momentum.window > 0) smooth_start_momentum(world_, clip, t, cfg_.start_momentum, s);
   return s;
 }
 

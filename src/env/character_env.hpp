@@ -19,6 +19,19 @@ enum class ActionMode {
   Quaternion,  // 4 per spherical joint (normalised; zero = identity), 1 per revolute
 };
 
+// How a start drawn from a clip gets the clip's momentum over a window instead of the instant's
+// (smooth_start_momentum).
+struct StartMomentumSmoothing {
+  enum class Statistic {
+    Mean,    // the mean of the window's states
+    Median,  // per component: a spike shorter than half the window leaves it alone, and the
+             // clip's steady changes within a stride pass through
+  };
+  double window = 0.0;  // seconds each side of the start; 0: off
+  Statistic statistic = Statistic::Mean;
+  bool linear = true;  // also the horizontal linear momentum; false: the angular momentum only
+};
+
 struct CharacterEnvConfig {
   SimConfig sim;
   ObservationConfig observations;
@@ -43,10 +56,10 @@ struct CharacterEnvConfig {
   // off its stride. DeepMimic does the same (ResolveCharGroundIntersect). Off by default: the
   // committed models were trained without it.
   bool lift_starts = false;
-  // > 0: a start drawn from a clip (state_on_clip) carries the clip's whole-body momentum averaged
-  // over t +- this many seconds, not the instant's (smooth_start_momentum). 0: off, the default
-  // the committed models were trained with.
-  double start_momentum_window = 0.0;
+  // window > 0: a start drawn from a clip (state_on_clip) carries the clip's whole-body momentum
+  // over t +- window, not the instant's (smooth_start_momentum). Off by default: most committed
+  // models were trained without it.
+  StartMomentumSmoothing start_momentum;
   TerrainSpec terrain;             // flat by default; every kind starts flat around the origin
   std::vector<PushSpec> pushes;    // times from each episode's start
   ProjectileSpec projectiles;      // seed 004's projectile test when enabled
@@ -80,15 +93,17 @@ struct InitState {
 // The clip's state at `t`, with the `past` poses at t - past * dt, ..., t - dt (before the clip's
 // start a wrapping clip wraps, others hold their first frame).
 InitState init_state_from_clip(const Clip& clip, double t, int past = 0, double dt = 0.0);
-// Gives a start `s` (the clip's state at `t`) the clip's whole-body momentum averaged over
-// t +- window (17 evenly spaced states): the angular momentum about the centre of mass by a rigid
-// spin of the whole body about it, the horizontal linear momentum by a shift of every link's
-// velocity; joint velocities and the com's vertical velocity stay. Why: velocities from frame
-// differences are not a physical state at every phase. At the run clip's touchdowns the angular
-// momentum is 7-9 kg m^2/s and the com moves sideways at 0.5 m/s for two frames (about 2 and
-// 0.2-0.3 averaged over +-0.1 s); a simulated start keeps that, and it throws the character off the
+// Gives a start `s` (the clip's state at `t`) the clip's whole-body momentum over t +- window (the
+// mean or per-component median of 17 evenly spaced states): the angular momentum about the centre
+// of mass by a rigid spin of the whole body about it, the horizontal linear momentum (when
+// `smoothing.linear`) by a shift of every link's velocity; joint velocities and the com's vertical
+// velocity stay. Why: velocities from frame differences are not a physical state at every phase.
+// At the run clip's touchdown at half its cycle the angular momentum is over 8 kg m^2/s and the com
+// moves sideways at over 0.4 m/s for two frames (over +-0.1 s: a mean under 2.5 and 0.2, a median
+// of |L| under 1); a simulated start keeps the instant's, and it throws the character off the
 // clip's line. `world` is the character's (read on scratch data). Throws Error unless window > 0.
-void smooth_start_momentum(const World& world, const Clip& clip, double t, double window, InitState& s);
+void smooth_start_momentum(const World& world, const Clip& clip, double t, const StartMomentumSmoothing& smoothing,
+                           InitState& s);
 
 class CharacterEnv : public Env {
  public:
@@ -104,7 +119,7 @@ class CharacterEnv : public Env {
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
   Eigen::VectorXd reset(const InitState& init);
   // The clip's state at `t` with as many past poses as the observation's history uses, its
-  // momentum smoothed when config().start_momentum_window > 0.
+  // momentum smoothed when config().start_momentum.window > 0.
   InitState state_on_clip(const Clip& clip, double t) const;
   StepResult step(const Eigen::VectorXd& action) override;
   const mjModel_* physics_model() const override { return world_.model(); }

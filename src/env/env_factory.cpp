@@ -98,7 +98,14 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
   c.pd_limit = read_pd_limit(s);
   c.lift_starts = s.boolean("lift_starts", c.lift_starts);
-  c.start_momentum_window = s.number("start_momentum_window", c.start_momentum_window, 0, 10);
+  c.start_momentum.window = s.number("start_momentum_window", c.start_momentum.window, 0, 10);
+  c.start_momentum.statistic = s.choice("start_momentum_statistic", "mean", {"mean", "median"}) == "median"
+                                   ? StartMomentumSmoothing::Statistic::Median
+                                   : StartMomentumSmoothing::Statistic::Mean;
+  c.start_momentum.linear = s.boolean("start_momentum_linear", c.start_momentum.linear);
+  for (const char* key : {"start_momentum_statistic", "start_momentum_linear"})
+    if (s.child(key).IsDefined() && c.start_momentum.window == 0)
+      reader.fail(s.child(key), std::string("'env.") + key + "' shapes start_momentum_window's smoothing: it needs a window > 0");
   if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
     reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
   c.observations.names = s.texts("observations", c.observations.names);

@@ -197,7 +197,7 @@ std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch
   env_cfg.max_drift = cfg.max_drift;
   env_cfg.sim.pd_limit = cfg.pd_limit;
   env_cfg.lift_starts = cfg.lift_starts;
-  env_cfg.start_momentum_window = cfg.start_momentum_window;
+  env_cfg.start_momentum = cfg.start_momentum;
   // The clips are not the env's reference: they supply starts (and a non-cyclic one's end), not
   // the phase a reference would (nothing is tracked).
   auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);

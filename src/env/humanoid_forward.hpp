@@ -49,7 +49,7 @@ struct HumanoidForwardConfig {
   ProjectileSpec projectiles;  // seed 004's robustness test when enabled (mimic eval --robustness)
   PdLimit pd_limit = PdLimit::Spring;  // what the joints' torque limits bound (sim/world.hpp)
   bool lift_starts = false;            // raise starts out of the floor (CharacterEnvConfig)
-  double start_momentum_window = 0.0;  // s; > 0 smooths mocap starts' momentum (CharacterEnvConfig)
+  StartMomentumSmoothing start_momentum;  // window > 0 smooths mocap starts' momentum (CharacterEnvConfig)
   // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn uniformly at every start
   // and every goal_period seconds. With Goal::Heading the forward and lateral terms give way to
   //   goal   goal_weight * exp(-0.25 (goal_speed - d . v)^2), d the target direction, v the root's
