@@ -56,6 +56,7 @@ struct EvalArgs {
   double robustness_seconds = 10.0;
   bool stochastic = false;
   std::uint64_t seed = 12345;
+  std::vector<std::string> settings;  // env.KEY=VALUE overrides of the run's config, in memory
 };
 
 // The `count` links with the largest values of a per-link vector, largest first: "right_wrist 0.312, ...".
@@ -108,6 +109,13 @@ PolicyFunction policy_on_character(const EvalArgs& args, const Trainer& trainer,
   };
 }
 
+// The user's --set overrides, then the command's own (which win where both name a key).
+std::vector<std::string> with_settings(const EvalArgs& args, const std::vector<std::string>& own) {
+  std::vector<std::string> all = args.settings;
+  all.insert(all.end(), own.begin(), own.end());
+  return all;
+}
+
 // Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
 std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   const std::filesystem::path config = args.run / "config.yaml";
@@ -119,8 +127,10 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   for (std::size_t i = 0; i < args.masses.size(); ++i) {
     const double mass = args.masses[i];
     const std::string text = override_config(read_text_file(config), config.string(),
-                                             {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
-                                              fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0), "rewards=[{source: env}]"});
+                                             with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass)
+                                                                           : "env.projectiles={enabled: false}",
+                                                                  fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0),
+                                                                  "rewards=[{source: env}]"}));
     const TrainConfig cfg = parse_train_config(text, config.string());
     const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
     CharacterEnv* character = character_of(*env);
@@ -151,7 +161,7 @@ std::string latency(const EvalArgs& args, const Trainer& trainer) {
   const bool adversarial = std::any_of(cfg.rewards.begin(), cfg.rewards.end(), [](const RewardSourceConfig& r) { return r.source != "env"; });
   if (adversarial) {
     try {
-      const std::unique_ptr<Trainer> full = Trainer::load_policy(args.run, true);
+      const std::unique_ptr<Trainer> full = Trainer::load_policy(args.run, true, args.settings);
       const std::vector<RuntimeCost> costs = discriminator_costs(*full);
       for (std::size_t i = 0; i < costs.size(); ++i) {
         const RuntimeCost& c = costs[i];
@@ -208,18 +218,25 @@ std::string context_switches(const EvalArgs& args, const Trainer& trainer) {
 }
 
 void evaluate(const EvalArgs& args) {
-  const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args.run);
+  // Only the environment may change: the policy's shape and training are the checkpoint's.
+  for (const std::string& setting : args.settings)
+    if (setting.rfind("env.", 0) != 0)
+      throw Error("--set " + setting + ": eval overrides environment keys only (env.KEY=VALUE, e.g. env.max_seconds=30)");
+  const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args.run, false, args.settings);
   const EpisodeStats s = trainer->run_episodes(args.episodes, args.seed, !args.stochastic);
   const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
   // Episodes ended by a failure: a fall, or a tracking env's max_drift (the JSON's key predates it).
   const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
   const char* actions = args.stochastic ? "sampled" : "mean";
   spdlog::info("{}", args.run.string());
+  for (const std::string& setting : args.settings) spdlog::info("  --set           {} (the run's config.yaml is unchanged)", setting);
   spdlog::info("  episodes        {} ({} actions): return {:.2f} +- {:.2f}, length {:.1f} steps, failure rate {:.2f}", s.returns.size(),
                actions, mean_of(s.returns), std_of(s.returns), mean_of(lengths), fall_rate);
-  std::string json = fmt::format("{{\"run\": {}, \"episodes\": {}, \"actions\": \"{}\", \"return_mean\": {}, \"return_std\": {}, "
-                                 "\"episode_length\": {}, \"fall_rate\": {}",
-                                 json_string(args.run.string()), s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
+  std::string settings;
+  for (const std::string& setting : args.settings) settings += (settings.empty() ? "" : ", ") + json_string(setting);
+  std::string json = fmt::format("{{\"run\": {}, \"settings\": [{}], \"episodes\": {}, \"actions\": \"{}\", \"return_mean\": {}, "
+                                 "\"return_std\": {}, \"episode_length\": {}, \"fall_rate\": {}",
+                                 json_string(args.run.string()), settings, s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
                                  mean_of(lengths), fall_rate);
 
   // Imitation: a character environment and a clip to compare with. A behaviour-context env is
@@ -305,6 +322,9 @@ void add_eval_command(CLI::App& app) {
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();
   ev->add_option("--json", args->json, "also write the figures to this JSON file");
+  ev->add_option("--set", args->settings,
+                 "override an environment key of the run's config for this evaluation: env.KEY=VALUE (e.g. env.start_momentum_window=0.1); "
+                 "repeatable");
   ev->callback([args] { evaluate(*args); });
 }
 

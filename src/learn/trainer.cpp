@@ -364,13 +364,15 @@ void Trainer::take_policy_from(const std::filesystem::path& checkpoint) {
   read_policy(*impl_, checkpoint_of(checkpoint));
 }
 
-std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources) {
+std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources, const std::vector<std::string>& settings) {
   const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
   if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))
     throw Error(run.string() + ": not a training run (needs config.yaml and checkpoint.pt)");
   // Without reward sources their saved state is skipped: the env source loads nothing.
+  std::vector<std::string> overrides = settings;
+  if (!reward_sources) overrides.push_back("rewards=[{source: env}]");
   const std::string raw = read_text_file(config);
-  const std::string text = reward_sources ? raw : override_config(raw, config.string(), {"rewards=[{source: env}]"});
+  const std::string text = overrides.empty() ? raw : override_config(raw, config.string(), overrides);
   auto trainer = std::make_unique<Trainer>(parse_train_config(text, config.string()));
   trainer->load_checkpoint(checkpoint);
   return trainer;

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "env/env_factory.hpp"
@@ -123,8 +124,10 @@ class Trainer {
   // A trained policy from a run directory (config.yaml + checkpoint.pt), for acting only
   // (evaluation, videos, recording): its reward sources are left out, so that a run whose
   // discriminator read expert files elsewhere still loads; with `reward_sources` they are built
-  // and restored too (their expert files must be found). Error naming the run otherwise.
-  static std::unique_ptr<Trainer> load_policy(const std::filesystem::path& run, bool reward_sources = false);
+  // and restored too (their expert files must be found). `settings` override the run's config as
+  // `mimic train --set` does (KEY.PATH=VALUE), in memory only. Error naming the run otherwise.
+  static std::unique_ptr<Trainer> load_policy(const std::filesystem::path& run, bool reward_sources = false,
+                                              const std::vector<std::string>& settings = {});
 
   struct Impl;
   Impl& impl() { return *impl_; }  // for tests and benchmarks that reach the networks
