@@ -775,7 +775,9 @@ TEST(HumanoidForward, StartMomentumKeysReachTheEnv) {
   const std::string bad_statistic =
       factory_error(yaml, "{name: humanoid_forward, start_momentum_window: 0.1, start_momentum_statistic: mode}");
   EXPECT_NE(bad_statistic.find("start_momentum_statistic"), std::string::npos) << bad_statistic;
-  // Without a window the keys would do nothing: an error, not a silent no-op.
+  // Without a window the keys would do nothing: an error, not a silent no-op. A window of 0 given
+  // with them turns the smoothing off on purpose (eval --set env.start_momentum_window=0).
   const std::string no_window = factory_error(yaml, "{name: humanoid_forward, start_momentum_linear: false}");
-  EXPECT_NE(no_window.find("needs a window"), std::string::npos) << no_window;
+  EXPECT_NE(no_window.find("needs a start_momentum_window"), std::string::npos) << no_window;
+  EXPECT_EQ(smoothing("{name: humanoid_forward, start_momentum_window: 0, start_momentum_statistic: median}").window, 0.0);
 }

@@ -104,8 +104,9 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
                                    : StartMomentumSmoothing::Statistic::Mean;
   c.start_momentum.linear = s.boolean("start_momentum_linear", c.start_momentum.linear);
   for (const char* key : {"start_momentum_statistic", "start_momentum_linear"})
-    if (s.child(key).IsDefined() && c.start_momentum.window == 0)
-      reader.fail(s.child(key), std::string("'env.") + key + "' shapes start_momentum_window's smoothing: it needs a window > 0");
+    if (s.child(key).IsDefined() && !s.child("start_momentum_window").IsDefined())
+      reader.fail(s.child(key), std::string("'env.") + key +
+                                    "' shapes start_momentum_window's smoothing: it needs a start_momentum_window (0 turns it off)");
   if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
     reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
   c.observations.names = s.texts("observations", c.observations.names);
