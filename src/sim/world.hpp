@@ -16,7 +16,7 @@ namespace mimic {
 // What a joint's torque limit bounds. `Spring`: the spring part alone, the damping (MuJoCo's joint
 // damping) unbounded, so a joint driven at its limit stops speeding up at limit / kd rad/s (2-4 rad/s
 // for DeepMimic's humanoid). `Total`: spring and damping together, as DeepMimic's PD controllers,
-// so a joint swings as fast as its torque can accelerate it (its run asks 10-15 rad/s).
+// so a joint swings as fast as its torque can accelerate it (its run asks 10-18 rad/s).
 enum class PdLimit { Spring, Total };
 
 struct SimConfig {
