@@ -208,9 +208,36 @@ TEST(Kinematics, WrapClipContinuesWithDrift) {
   const Vec3 drift = walk.frames.back().root_pos - walk.frames.front().root_pos;
   // One cycle later the pose is the same, displaced by the cycle's drift on the ground.
   const Pose a = walk.sample(0.2), b = walk.sample(0.2 + walk.duration());
-  EXPECT_NEAR((b.root_pos - a.root_pos).x(), drift.x(), 0.02);
+  EXPECT_NEAR((b.root_pos - a.root_pos).x(), drift.x(), 1e-9);
+  EXPECT_NEAR((b.root_pos - a.root_pos).y(), drift.y(), 1e-9);
   EXPECT_NEAR(b.root_pos.z(), a.root_pos.z(), 1e-9);
-  for (std::size_t j = 1; j < a.rot.size(); ++j) EXPECT_LT(rotation_distance(a.rot[j], b.rot[j]), 1e-9);
+  // The walk's last frame faces 6.9 degrees off its first; the loop still does not turn.
+  for (std::size_t j = 0; j < a.rot.size(); ++j) EXPECT_LT(rotation_distance(a.rot[j], b.rot[j]), 1e-9);
+}
+
+TEST(Clip, WrapCyclesTranslateWithoutTurning) {
+  // Three frames 1 s apart along +x; the last faces 10 degrees left of the first (as DeepMimic's
+  // run and walk clips do, whose root paths are straight).
+  Clip c;
+  c.skeleton = tiny_skeleton();
+  c.fps = 1.0;
+  c.loop = LoopMode::Wrap;
+  for (int f = 0; f < 3; ++f) {
+    Pose p = rest_pose(c.skeleton, Vec3(f, 0, 1));
+    if (f == 2) p.rot[0] = axis_rotation('z', deg_to_rad(10.0));
+    c.frames.push_back(p);
+  }
+  // One cycle moves the root by the first-to-last translation (2, 0, 0) and nothing else.
+  for (double t : {0.0, 0.5, 1.0, 1.25}) {
+    const Pose a = c.sample(t), b = c.sample(t + 2.0), back = c.sample(t - 2.0);
+    EXPECT_TRUE((b.root_pos - a.root_pos).isApprox(Vec3(2, 0, 0), 1e-12)) << "t " << t;
+    EXPECT_TRUE((a.root_pos - back.root_pos).isApprox(Vec3(2, 0, 0), 1e-12)) << "t " << t;
+    EXPECT_LT(rotation_distance(a.rot[0], b.rot[0]), 1e-12) << "t " << t;
+  }
+  // Across the seam the root stays on the line y = 0: frame 3 is frame 1 moved to x = 3.
+  EXPECT_TRUE(c.sample(3.0).root_pos.isApprox(Vec3(3, 0, 1), 1e-12));
+  EXPECT_LT(rotation_distance(c.sample(3.0).rot[0], Quat::Identity()), 1e-12);
+  EXPECT_NEAR(c.sample(2.5).root_pos.y(), 0.0, 1e-12);
 }
 
 TEST(Kinematics, HeadingFrameExpressesPointsRelativeToFacing) {

@@ -43,40 +43,24 @@ void Clip::validate() const {
 
 namespace {
 
-// Rigid yaw-plus-translation that maps a wrap clip's first frame onto its last.
+// The ground translation that takes a wrap clip's first root position to its last: cycle k is the
+// first cycle moved k times by it. Translation only, as DeepMimic (cKinCharacter's cycle root
+// delta): the run and walk clips run straight (their lateral root coordinate is 0 in every frame)
+// but their last frame faces 5.3 and 6.9 degrees off the first, so a turn per cycle taken from the
+// end frames' headings bent their loops into circles of some 30 m and 10 m radius.
 struct CycleShift {
-  Quat yaw = Quat::Identity();
-  Vec3 from = Vec3::Zero();  // start root position, ground plane
-  Vec3 to = Vec3::Zero();    // end root position, ground plane
+  Vec3 delta = Vec3::Zero();  // ground plane
 
   Pose apply(const Pose& p, int times) const {
     Pose out = p;
-    for (int k = 0; k < times; ++k) {
-      Vec3 d = out.root_pos - from;
-      d.z() = 0;
-      const Vec3 moved = yaw * d;
-      out.root_pos = Vec3(to.x() + moved.x(), to.y() + moved.y(), out.root_pos.z());
-      out.rot[0] = yaw * out.rot[0];
-    }
-    for (int k = 0; k > times; --k) {
-      Vec3 d = out.root_pos - to;
-      d.z() = 0;
-      const Vec3 moved = yaw.conjugate() * d;
-      out.root_pos = Vec3(from.x() + moved.x(), from.y() + moved.y(), out.root_pos.z());
-      out.rot[0] = yaw.conjugate() * out.rot[0];
-    }
+    out.root_pos += static_cast<double>(times) * delta;
     return out;
   }
 };
 
 CycleShift cycle_shift(const Clip& c) {
-  CycleShift s;
-  const Pose& a = c.frames.front();
-  const Pose& b = c.frames.back();
-  s.yaw = heading_rotation(heading_angle(b.rot[0]) - heading_angle(a.rot[0]));
-  s.from = Vec3(a.root_pos.x(), a.root_pos.y(), 0);
-  s.to = Vec3(b.root_pos.x(), b.root_pos.y(), 0);
-  return s;
+  const Vec3 d = c.frames.back().root_pos - c.frames.front().root_pos;
+  return CycleShift{Vec3(d.x(), d.y(), 0.0)};
 }
 
 // Frame i of one cycle for i in [-1, n]: the clip's own frames, and beyond the ends the

@@ -1,9 +1,10 @@
 #pragma once
 // A motion clip: poses of one skeleton sampled at a fixed rate.
 // Frame i is at time i / fps; the duration is (num_frames - 1) / fps. A looping ("wrap") clip
-// repeats: cycle k is the first cycle moved k times by the yaw and ground translation that take
-// the first frame's root to the last frame's (DeepMimic's convention; the last frame need not
-// equal the first, the seam is where the clip jumps back).
+// repeats: cycle k is the first cycle moved k times by the ground translation that takes the first
+// frame's root to the last frame's, without turning (DeepMimic's convention; the last frame need
+// not equal the first, the seam is where the clip jumps back). A clip that turns over its cycle
+// loops as a polyline of straight cycles: give such a motion as a longer clip.
 #include <string>
 #include <vector>
 
@@ -36,7 +37,7 @@ struct Clip {
   int num_frames() const { return static_cast<int>(frames.size()); }
   double duration() const;
   // Pose at time t (seconds): cubic (Catmull-Rom) root position, slerp rotations. A wrap clip
-  // continues past its ends, accumulating root drift and heading change per cycle; otherwise t is
+  // continues past its ends, accumulating root drift per cycle; otherwise t is
   // clamped to [0, duration].
   Pose sample(double t) const;
   // Throws Error on the first inconsistency (fps, frame sizes, non-unit quaternions, ...).
