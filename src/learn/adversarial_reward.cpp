@@ -228,6 +228,9 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
   d.epochs = static_cast<int>(s.integer("epochs", d.epochs, 0, 1000));
   d.batch = static_cast<int>(s.integer("batch", d.batch, 1, 1 << 20));
   d.replay = static_cast<int>(s.integer("replay", d.replay, 0, 1 << 26));
+  d.reward = s.choice("reward", d.reward, {"neg_log_one_minus_d", "log_d", "logit"});
+  if (d.loss == "hinge" && s.has("reward"))
+    throw Error(context.config_source + ": " + s.name("reward") + " is the bce discriminator's (GAIL); the hinge ensemble's reward is the mean of its clipped heads");
   d.reward_clip = s.number("reward_clip", d.reward_clip, 1e-6, 1e6);
   d.reward_offset = s.number("reward_offset", d.reward_offset, -1e6, 1e6);
   d.standardise = s.choice("standardise", d.standardise, {"expert", "mixture"});

@@ -44,8 +44,12 @@ torch::Tensor summed_gradient_penalty(FeatureNet& net, const torch::Tensor& poin
   return (g.norm(2, 1) - 1.0).square().mean();
 }
 
-torch::Tensor gail_reward(const torch::Tensor& logits, double clip) {
-  return torch::nn::functional::softplus(logits).clamp_max(clip).mean(1);
+torch::Tensor gail_reward(const torch::Tensor& logits, double clip, const std::string& form) {
+  namespace F = torch::nn::functional;
+  if (form == "neg_log_one_minus_d") return F::softplus(logits).clamp_max(clip).mean(1);
+  if (form == "log_d") return (-F::softplus(-logits)).clamp_min(-clip).mean(1);
+  if (form == "logit") return logits.clamp(-clip, clip).mean(1);
+  throw Error("discriminator: reward must be neg_log_one_minus_d, log_d or logit, not '" + form + "'");
 }
 
 torch::Tensor ensemble_reward(const torch::Tensor& scores) { return scores.clamp(-1.0, 1.0).mean(1); }
@@ -58,6 +62,8 @@ Discriminator::Discriminator(torch::Tensor expert, const DiscriminatorConfig& cf
   if (cfg_.penalty_of != "heads" && cfg_.penalty_of != "sum")
     throw Error("discriminator: penalty_of must be heads or sum, not '" + cfg_.penalty_of + "'");
   if (!(cfg_.mismatched >= 0)) throw Error("discriminator: mismatched must be >= 0 (samples per policy sample)");
+  if (cfg_.reward != "neg_log_one_minus_d" && cfg_.reward != "log_d" && cfg_.reward != "logit")
+    throw Error("discriminator: reward must be neg_log_one_minus_d, log_d or logit, not '" + cfg_.reward + "'");
   if (cfg_.standardise != "expert" && cfg_.standardise != "mixture")
     throw Error("discriminator: standardise must be expert or mixture, not '" + cfg_.standardise + "'");
   set_statistics({});
@@ -98,7 +104,7 @@ torch::Tensor Discriminator::forward(const torch::Tensor& features) { return net
 torch::Tensor Discriminator::reward(const torch::Tensor& features) {
   torch::NoGradGuard no_grad;
   const torch::Tensor out = forward(features);
-  return (cfg_.loss == "hinge" ? ensemble_reward(out) : gail_reward(out, cfg_.reward_clip)) + cfg_.reward_offset;
+  return (cfg_.loss == "hinge" ? ensemble_reward(out) : gail_reward(out, cfg_.reward_clip, cfg_.reward)) + cfg_.reward_offset;
 }
 
 torch::Tensor Discriminator::loss_of(const torch::Tensor& expert_out, const torch::Tensor& policy_out) const {

@@ -31,7 +31,13 @@ struct DiscriminatorConfig {
   int epochs = 2;                 // passes per iteration over as many samples as the iteration collected
   int batch = 256;                // policy samples per minibatch (and as many expert samples)
   int replay = 0;                 // policy samples kept across iterations (0: this iteration's only)
-  double reward_clip = 10.0;      // bce: -log(1 - D) clipped here (seed 000)
+  // bce: what a sample earns from D = sigmoid(logit). "neg_log_one_minus_d", -log(1 - D) (seed 000:
+  // never negative, so surviving pays) clipped above at reward_clip; "log_d", log D (never positive,
+  // so ending an episode pays unless reward_offset makes up for it) clipped below at -reward_clip;
+  // "logit", log D - log(1 - D), clipped to +-reward_clip: the sum of both, whose slope does not
+  // vanish where the discriminator is sure (D near 0 or 1).
+  std::string reward = "neg_log_one_minus_d";
+  double reward_clip = 10.0;
   double reward_offset = 0.0;     // added to every reward: 1 keeps the hinge ensemble's [-1, 1] non-negative,
                                   // so that ending an episode early never pays
   // Input statistics: "expert" (the demonstrations') or "mixture" (half demonstrations, half the
@@ -54,9 +60,11 @@ torch::Tensor hinge_loss(const torch::Tensor& expert_scores, const torch::Tensor
 torch::Tensor gradient_penalty(FeatureNet& net, const torch::Tensor& points, const std::vector<std::int64_t>& heads = {});
 // E[(|grad_x sum_i D_i(x)| - 1)^2] at `points`, with a graph (penalty_of: sum).
 torch::Tensor summed_gradient_penalty(FeatureNet& net, const torch::Tensor& points);
-// Per-sample rewards [batch]: GAIL's -log(1 - sigmoid(logit)) = softplus(logit), clipped at `clip`
-// and averaged over heads; ICCGAN's mean over heads of clip(D_i, -1, 1) (seed 004 eq. 5).
-torch::Tensor gail_reward(const torch::Tensor& logits, double clip);
+// Per-sample rewards [batch] from [batch, heads] outputs, averaged over heads. GAIL's, by `form`
+// (DiscriminatorConfig::reward): -log(1 - sigmoid(logit)) = softplus(logit) clipped at `clip`;
+// log sigmoid(logit) = -softplus(-logit) clipped at -clip; or the logit clipped to +-clip.
+// ICCGAN's: the mean over heads of clip(D_i, -1, 1) (seed 004 eq. 5).
+torch::Tensor gail_reward(const torch::Tensor& logits, double clip, const std::string& form = "neg_log_one_minus_d");
 torch::Tensor ensemble_reward(const torch::Tensor& scores);
 
 struct DiscriminatorStats {

@@ -71,6 +71,26 @@ TEST(DiscriminatorReward, GailIsMinusLogOneMinusDClippedAndAveragedOverHeads) {
   EXPECT_NEAR(gail_reward(t2({-30.0f}, 1, 1), 10.0)[0].item<double>(), 0.0, 1e-9);
 }
 
+TEST(DiscriminatorReward, LogDAndTheLogitAreTheOtherForms) {
+  // log sigmoid(0) = -log 2; log sigmoid(-20) = -20.000000002, clipped at -10; log sigmoid(2) = -log(1 + e^-2).
+  const torch::Tensor log_d = gail_reward(t2({0.0f, -20.0f, 2.0f}, 3, 1), 10.0, "log_d");
+  EXPECT_NEAR(log_d[0].item<double>(), -std::log(2.0), 1e-6);
+  EXPECT_NEAR(log_d[1].item<double>(), -10.0, 1e-6);
+  EXPECT_NEAR(log_d[2].item<double>(), -std::log1p(std::exp(-2.0)), 1e-6);
+  // log D - log(1 - D) is the logit itself: -3 stays, 25 is clipped at 10; two heads average.
+  EXPECT_NEAR(gail_reward(t2({-3.0f, 25.0f}, 1, 2), 10.0, "logit")[0].item<double>(), (-3.0 + 10.0) / 2, 1e-6);
+  // Where the discriminator is sure of two policy samples, -log(1 - D) scores them alike and the
+  // logit still ranks them.
+  const torch::Tensor sure = t2({-12.0f, -8.0f}, 2, 1);
+  const torch::Tensor flat = gail_reward(sure, 10.0), ranked = gail_reward(sure, 20.0, "logit");
+  EXPECT_LT(flat[1].item<double>() - flat[0].item<double>(), 4e-4);
+  EXPECT_NEAR(ranked[1].item<double>() - ranked[0].item<double>(), 4.0, 1e-6);
+  EXPECT_THROW(gail_reward(sure, 10.0, "log"), Error);
+  DiscriminatorConfig bad;
+  bad.reward = "log";
+  EXPECT_THROW(Discriminator(torch::zeros({4, 2}), bad, 1), Error);
+}
+
 TEST(DiscriminatorReward, EnsembleIsTheMeanOfHeadsClippedToPlusMinusOne) {
   const torch::Tensor r = ensemble_reward(t2({-3.0f, 0.5f, 2.0f, 0.2f, 0.4f, -0.3f}, 2, 3));
   EXPECT_NEAR(r[0].item<double>(), (-1.0 + 0.5 + 1.0) / 3, 1e-6);

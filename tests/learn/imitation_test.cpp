@@ -159,6 +159,28 @@ TEST(AdversarialConfig, TheEnsemblesDefaultsAreSeed004s) {
   EXPECT_EQ(d.replay, 8192);
 }
 
+TEST(AdversarialConfig, GailsRewardFormIsChosenAndTheEnsembleRefusesIt) {
+  const auto dir = test::temp_dir("adversarial_reward_form");
+  write_demonstrations(dir / "expert.csv", oscillator_expert(2));
+  Trainer t(parse_train_config(gail_config(dir / "expert.csv", 1, ", reward: log_d, reward_offset: 5"), "osc.yaml"), oscillator_options());
+  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(source->discriminator().config().reward, "log_d");
+  // log D <= 0: with the offset of 5 every reward lies in [5 - 10, 5].
+  const torch::Tensor r = source->discriminator().reward(source->discriminator().expert());
+  EXPECT_LE(r.max().item<double>(), 5.0);
+  EXPECT_GE(r.min().item<double>(), -5.0);
+  const std::string bad = error_of([&] {
+    Trainer b(parse_train_config(gail_config(dir / "expert.csv", 1, ", reward: log"), "osc.yaml"), oscillator_options());
+  });
+  EXPECT_NE(bad.find("reward"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("logit"), std::string::npos) << bad;
+  std::string yaml = gail_config(dir / "expert.csv", 1, ", reward: logit");
+  yaml.replace(yaml.find("source: gail"), 12, "source: iccgan");
+  const std::string hinge = error_of([&] { Trainer h(parse_train_config(yaml, "osc.yaml"), oscillator_options()); });
+  EXPECT_NE(hinge.find("'rewards.reward' is the bce discriminator's (GAIL)"), std::string::npos) << hinge;
+}
+
 TEST(AdversarialConfig, AnExpertWithAnotherBodyIsMatchedByItsLayout) {
   const auto dir = test::temp_dir("adversarial_other_body");
   // An expert whose observation is (pad, velocity, pad, position): its layout names the parts.
