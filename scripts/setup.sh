@@ -9,6 +9,7 @@ packages=(
   clang libclang-rt-14-dev          # libFuzzer build of the fuzz targets (optional)
   # core libraries
   libeigen3-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
+  zlib1g-dev                        # CRC-32 of checkpoint archives (core/zip_integrity)
   # tests and benchmarks
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   # physics

@@ -160,6 +160,10 @@ std::vector<MalformedCase> motion_cases() {
        "frame 0: frame duration must be between 1e-6 and 10 s"},
       {"unknown \"Loop\" value", replace_once(b, "\"wrap\"", "\"forever\""), 2, "\"Loop\" must be \"wrap\" or \"none\""},
       {"\"Loop\" is not a string", replace_once(b, "\"wrap\"", "[\"wrap\"]"), 2, "\"Loop\" must be \"wrap\" or \"none\""},
+      {"root position of 1e308", replace_once(b, "[0.5, 0.1, 0.81", "[0.5, 1e308, 0.81"), 6,
+       "frame 1: root position is beyond 1e4 m of the origin (a unit or file error)"},
+      {"a key given twice", replace_once(b, "\"Loop\": \"wrap\",", "\"Loop\": \"wrap\", \"Loop\": \"none\","), 2,
+       "key 'Loop' is given twice (first on line 2)"},
   };
 }
 

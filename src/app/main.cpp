@@ -3,6 +3,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+#include <new>
+
 #include "app/commands.hpp"
 #include "core/blas_kernel.hpp"
 #include "core/error.hpp"
@@ -26,6 +29,13 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const mimic::Error& e) {
     spdlog::error("{}", e.what());
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // An output that cannot be made (a directory under a file, no permission, a full disk).
+    spdlog::error("{}: {}", e.path1().string(), e.code().message());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    spdlog::error("out of memory");
     return 1;
   } catch (const std::exception& e) {
     spdlog::error("unexpected failure: {}", e.what());

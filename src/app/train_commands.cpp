@@ -6,6 +6,8 @@
 #include <cmath>
 #include <csignal>
 
+#include <unistd.h>
+
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -16,9 +18,16 @@ namespace mimic::app {
 
 namespace {
 
-// Ctrl-C or SIGTERM: the first stops the run at its next checkpoint iteration, a second at once.
+// Ctrl-C or SIGTERM: the first stops the run within a collection step or a learning minibatch and
+// saves its last completed iteration; a second exits at once (the checkpoint on disk stays: every
+// write of it is atomic).
 std::atomic<int> g_stops{0};
-extern "C" void request_stop(int) { g_stops.fetch_add(1); }
+extern "C" void request_stop(int) {
+  if (g_stops.fetch_add(1) == 0) return;
+  static const char message[] = "\nsecond stop request: exiting at once; the last checkpoint on disk is kept\n";
+  (void)!::write(STDERR_FILENO, message, sizeof message - 1);
+  ::_exit(130);
+}
 
 std::string join_names(const std::vector<std::string>& names) {
   std::string out;
@@ -76,13 +85,7 @@ void add_train_commands(CLI::App& app) {
     opts.init_from = args->init_from;
     opts.init_discriminators_from = args->init_discriminators_from;
     opts.stop_requests = [] { return g_stops.load(); };
-    opts.on_iteration = [every = cfg.checkpoint_every, last = cfg.iterations, announced = false](const IterationMetrics& m) mutable {
-      if (g_stops.load() == 1 && !announced && m.iteration % every != 0 && m.iteration < last) {
-        spdlog::info("stop requested: going on to iteration {}, the next checkpoint, so that --resume continues as if the run had "
-                     "never stopped; Ctrl-C again to stop after this iteration",
-                     std::min(last, (m.iteration / every + 1) * every));
-        announced = true;
-      }
+    opts.on_iteration = [](const IterationMetrics& m) {
       spdlog::info("iter {:>5}  samples {:>9}  return {:>9}  len {:>6}  kl {:>8}  ent {:>7}  ev {:>6}  {:>7} samples/s",
                    m.iteration, cell(m, "samples", "{:.0f}"), cell(m, "return", "{:.2f}"), cell(m, "episode_length", "{:.0f}"),
                    cell(m, "kl", "{:.4f}"), cell(m, "entropy", "{:.2f}"), cell(m, "explained_variance", "{:.2f}"),
@@ -108,9 +111,14 @@ void add_train_commands(CLI::App& app) {
       spdlog::info("{} was saved without the observation parts {}: its inputs were widened by them, with weights starting at zero "
                    "(the policy acts as it did until it learns to use them)",
                    args->init_from.string(), join_names(trainer.parts_added_by_init()));
-    trainer.run();
-    spdlog::info("{} after {} iterations ({} samples); checkpoint {}", g_stops.load() > 0 ? "stopped" : "done", trainer.iteration(),
-                 trainer.samples(), (opts.run_dir / "checkpoint.pt").string());
+    const RunEnd end = trainer.run();
+    if (end.stopped)
+      spdlog::info("stop requested{}: saved iteration {}, the last completed ({} samples), to {}; mimic train --resume -o {} goes on from it",
+                   end.interrupted.empty() ? "" : " (" + end.interrupted + ")", end.iteration, trainer.samples(),
+                   (opts.run_dir / "checkpoint.pt").string(), opts.run_dir.string());
+    else
+      spdlog::info("done after {} iterations ({} samples); checkpoint {}", end.iteration, trainer.samples(),
+                   (opts.run_dir / "checkpoint.pt").string());
   });
 
   // A run's checkpoint keeps everything training needs to go on (tens of MB for an imitation run:

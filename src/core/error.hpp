@@ -24,4 +24,11 @@ class ParseError : public Error {
   int line_;
 };
 
+// A long computation stopped on request (Ctrl-C, SIGTERM): thrown from inside collection and
+// learning loops, which poll a stop flag, and caught where the last completed state is kept.
+class Interrupted : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace mimic

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
+#include "core/file_io.hpp"
 
 namespace mimic {
 namespace fs = std::filesystem;
@@ -209,6 +210,19 @@ void decode_event(std::string_view data, std::vector<TensorBoardScalar>& out) {
   for (std::string_view v : values) decode_value(v, step, out);
 }
 
+// Event.step (field 2), 0 where absent.
+int64_t event_step(std::string_view data) {
+  ProtoReader r(data);
+  int64_t step = 0;
+  while (!r.done()) {
+    const uint64_t key = r.varint();
+    const auto type = static_cast<uint32_t>(key & 7u);
+    if ((key >> 3) == 2 && type == kVarint) step = static_cast<int64_t>(r.varint());
+    else r.skip(type);
+  }
+  return step;
+}
+
 }  // namespace
 
 uint32_t crc32c(std::string_view data) {
@@ -286,6 +300,43 @@ void TensorBoardWriter::write_record(std::string_view payload) {
   put_fixed(record, masked_crc(payload), 4);
   out_.write(record.data(), static_cast<std::streamsize>(record.size()));
   if (!out_) throw Error(path_.string() + ": write failed");
+}
+
+int truncate_tensorboard_events(const fs::path& dir, int64_t last_step) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return 0;
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().filename().string().rfind("events.out.tfevents.", 0) != 0) continue;
+    const std::string data = read_text_file(entry.path());
+    const std::string_view all(data);
+    std::string kept;
+    size_t pos = 0;
+    int records = 0, kept_records = 0;
+    while (all.size() - pos >= 16) {
+      const std::string_view header = all.substr(pos, 8);
+      if (static_cast<uint32_t>(get_fixed(all, pos + 8, 4)) != masked_crc(header)) break;
+      const uint64_t length = get_fixed(all, pos, 8);
+      if (length > all.size() - pos - 16) break;
+      const std::string_view payload = all.substr(pos + 12, static_cast<size_t>(length));
+      if (static_cast<uint32_t>(get_fixed(all, pos + 12 + payload.size(), 4)) != masked_crc(payload)) break;
+      int64_t step = 0;
+      try {
+        step = event_step(payload);
+      } catch (const MalformedEvent&) {
+        break;
+      }
+      ++records;
+      const size_t end = pos + 16 + payload.size();
+      if (step <= last_step) kept.append(all.substr(pos, end - pos)), ++kept_records;
+      pos = end;
+    }
+    // Records after a damaged one cannot be framed: they go with it.
+    if (kept.size() == data.size()) continue;
+    removed += records - kept_records + (pos < all.size() ? 1 : 0);
+    write_file_atomic(entry.path(), kept);
+  }
+  return removed;
 }
 
 std::vector<TensorBoardScalar> read_tensorboard_scalars(const fs::path& file) {

@@ -47,6 +47,12 @@ struct TensorBoardScalar {
   int64_t step;
 };
 
+// A resumed run's event files, cut back to its checkpoint: every record of the event files in `dir`
+// whose step is above `last_step` is removed (each file rewritten atomically), and so is everything
+// from a file's first damaged record on (a record cut by a kill). The resumed writer then adds
+// each later step once. Returns how many records were removed.
+int truncate_tensorboard_events(const std::filesystem::path& dir, int64_t last_step);
+
 // Every simple_value scalar in an event file, in file order. Checks both CRCs of every record;
 // throws Error naming the file and the record index on a bad length, CRC, truncation or message.
 std::vector<TensorBoardScalar> read_tensorboard_scalars(const std::filesystem::path& file);

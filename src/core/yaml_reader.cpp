@@ -1,6 +1,9 @@
 #include "core/yaml_reader.hpp"
 
+#include <map>
+
 #include "core/error.hpp"
+#include "core/file_io.hpp"
 #include "core/text_scanner.hpp"
 
 namespace mimic {
@@ -14,12 +17,35 @@ std::string printable_message(std::string m) {
 }
 }  // namespace
 
+void reject_duplicate_keys(const YAML::Node& node, const std::string& source) {
+  if (node.IsSequence()) {
+    for (const YAML::Node& item : node) reject_duplicate_keys(item, source);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, int> seen;  // key -> line
+  for (const auto& pair : node) {
+    if (pair.first.IsScalar()) {
+      const int line = pair.first.Mark().line + 1;
+      const auto [at, fresh] = seen.emplace(pair.first.Scalar(), line);
+      if (!fresh)
+        throw ParseError(source, line, "key '" + printable_message(pair.first.Scalar()) + "' is given twice (first on line " +
+                                           std::to_string(at->second) + "); only one of the values could be used");
+    }
+    reject_duplicate_keys(pair.second, source);
+  }
+}
+
 YAML::Node YamlReader::parse(std::string_view text, const std::string& invalid) const {
+  check_input_size(text.size(), kMaxYamlBytes, source_, "YAML and JSON, which take some 60 times their size in memory to read");
+  YAML::Node root;
   try {
-    return YAML::Load(std::string(text));
+    root = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
     throw ParseError(source_, e.mark.line + 1, invalid + ": " + printable_message(e.msg));
   }
+  reject_duplicate_keys(root, source_);
+  return root;
 }
 
 void YamlReader::fail(const YAML::Node& at, const std::string& message) const {

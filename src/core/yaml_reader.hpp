@@ -9,12 +9,17 @@
 
 namespace mimic {
 
+// ParseError at the second of two equal keys in one mapping, anywhere under `node` (yaml-cpp
+// keeps both and answers the first: `seed: 2` then `seed: 3` would silently train seed 2).
+void reject_duplicate_keys(const YAML::Node& node, const std::string& source);
+
 class YamlReader {
  public:
   // `quote` surrounds key names in messages: '"' for JSON files, '\'' for YAML.
   explicit YamlReader(std::string source, char quote = '\'') : source_(std::move(source)), quote_(quote) {}
 
-  // Parses `text`; a syntax error becomes ParseError "<invalid>: <yaml-cpp's message>".
+  // Parses `text` (at most kMaxYamlBytes); a syntax error becomes ParseError "<invalid>:
+  // <yaml-cpp's message>", a key given twice in one mapping a ParseError naming both lines.
   YAML::Node parse(std::string_view text, const std::string& invalid) const;
 
   [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const;

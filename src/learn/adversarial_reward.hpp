@@ -49,6 +49,8 @@ class AdversarialRewardSource : public RewardSource {
   std::vector<double> rewards(const Rollout& rollout) override;
   std::vector<std::pair<std::string, double>> update(const Rollout& rollout) override;
   void drop_training_state() override { disc_.drop_training_state(); }
+  void set_interrupt(std::function<bool()> interrupted) override { disc_.set_interrupt(std::move(interrupted)); }
+  void check_weights() const override { disc_.check_weights(); }
   void save(torch::serialize::OutputArchive& a) const override;
   void load(torch::serialize::InputArchive& a) override;
   void load_widened(torch::serialize::InputArchive& a, int added_contexts) override;

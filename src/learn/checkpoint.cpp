@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "core/zip_integrity.hpp"
 #include "learn/archive_util.hpp"
 #include "learn/input_widening.hpp"
 #include "learn/per_context_reward.hpp"
@@ -74,8 +75,15 @@ void read_adaptive_init(Trainer::Impl& t, InputArchive& a) {
 }
 }  // namespace
 
-void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path) {
+std::string serialize_checkpoint(const Trainer::Impl& t) {
   t.learner->check_parameters(t.iteration);  // never save a broken model
+  for (const auto& [weight, source] : t.rewards) {
+    try {
+      source->check_weights();
+    } catch (const TrainingDiverged& e) {
+      throw TrainingDiverged("iteration " + std::to_string(t.iteration) + ", reward source '" + source->name() + "', " + e.what());
+    }
+  }
   OutputArchive a;
   a.write("format", torch::tensor(kFormat));
   a.write("iteration", torch::tensor(static_cast<std::int64_t>(t.iteration)));
@@ -115,7 +123,7 @@ void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path)
   }
   std::ostringstream out;
   a.save_to(out);
-  write_file_atomic(path, out.str());
+  return out.str();
 }
 
 void write_policy_snapshot(const Trainer::Impl& t, const std::filesystem::path& path) {
@@ -140,7 +148,7 @@ namespace {
 
 // Opens the archive after the checks LibTorch does not make; errors without the file's name.
 void open_archive(const std::filesystem::path& path, InputArchive& a) {
-  const std::string bytes = read_text_file(path);
+  const std::string bytes = read_text_file(path, kMaxCheckpointBytes);
   // LibTorch's archives are zip files; anything else is refused here (LibTorch's zip reader
   // leaks memory on non-zip input, and "not a zip archive" says more).
   if (bytes.size() < 22 || bytes.compare(0, 4, "PK\x03\x04") != 0)
@@ -149,6 +157,12 @@ void open_archive(const std::filesystem::path& path, InputArchive& a) {
   const std::size_t tail = bytes.size() > 65557 ? bytes.size() - 65557 : 0;
   if (bytes.rfind("PK\x05\x06") == std::string::npos || bytes.rfind("PK\x05\x06") < tail)
     throw Error("checkpoint is truncated (its zip directory is missing): " + std::to_string(bytes.size()) + " bytes");
+  // LibTorch never checks the CRC-32s its archives record: a flipped bit in the weights would load.
+  try {
+    verify_zip(bytes);
+  } catch (const Error& e) {
+    throw Error(std::string("checkpoint is damaged, nothing of it was used (") + e.what() + ")");
+  }
   std::istringstream in(bytes);
   a.load_from(in);
 }
@@ -245,6 +259,19 @@ bool is_exported_checkpoint(const std::filesystem::path& path) {
     open_archive(path, a);
     torch::Tensor flag;
     return a.try_read("acting_only", flag);
+  } catch (const c10::Error& e) {
+    throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
+  }
+}
+
+int checkpoint_iteration(const std::filesystem::path& path) {
+  try {
+    InputArchive a;
+    open_archive(path, a);
+    check_format(a);
+    return static_cast<int>(get(a, "iteration").item<std::int64_t>());
   } catch (const c10::Error& e) {
     throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
   } catch (const Error& e) {

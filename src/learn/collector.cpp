@@ -215,6 +215,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
       times_.simulation += resetting.seconds();
     }
     if (step_hook_) step_hook_(r.size());
+    if (interrupted_ && interrupted_()) throw Interrupted("stopped during collection, " + std::to_string(r.size()) + " samples in");
   }
 
   // Values that bootstrap: the state after each step is the next sample of the same environment,

@@ -52,6 +52,9 @@ class Collector {
   void set_rng_states(const std::vector<std::string>& states);
   // Test hook: called with the number of samples collected so far in this call, after each step.
   void set_step_hook(std::function<void(int)> hook) { step_hook_ = std::move(hook); }
+  // Polled after every step: once it returns true, the collection throws Interrupted (the
+  // environments are then mid-episode; reset_all() before collecting again).
+  void set_interrupt(std::function<bool()> interrupted) { interrupted_ = std::move(interrupted); }
 
  private:
   struct Slot;
@@ -66,6 +69,7 @@ class Collector {
   EpisodeStats stats_;
   CollectTimes times_;
   std::function<void(int)> step_hook_;
+  std::function<bool()> interrupted_;
 };
 
 }  // namespace mimic

@@ -2,13 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "core/error.hpp"
 #include "learn/archive_util.hpp"
+#include "learn/divergence.hpp"
 #include "learn/input_widening.hpp"
 
 namespace mimic {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
 
 torch::Tensor bce_loss(const torch::Tensor& expert_logits, const torch::Tensor& policy_logits) {
   namespace F = torch::nn::functional;
@@ -168,7 +174,10 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
         const auto m = std::max<std::int64_t>(1, std::llround(cfg_.mismatched * static_cast<double>(b)));
         fake = torch::cat({fake, net_->forward(standardise(draw(mismatched_, m)))});
       }
+      if (interrupted_ && interrupted_()) throw Interrupted("stopped during the discriminator's update");
       torch::Tensor loss = loss_of(net_->forward(e), fake);
+      const std::string step = "discriminator step " + std::to_string(steps + 1);
+      check_diverged(loss.item<double>(), -kInf, kInf, step, "the loss");
       s.loss += loss.item<double>();
       if (cfg_.gradient_penalty > 0) {
         std::vector<float> alpha(static_cast<std::size_t>(b));
@@ -184,6 +193,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
         const torch::Tensor points = a * e + (1 - a) * p;
         const torch::Tensor penalty =
             cfg_.penalty_of == "sum" ? summed_gradient_penalty(net_, points) : gradient_penalty(net_, points, heads);
+        check_diverged(penalty.item<double>(), -kInf, kInf, step, "the gradient penalty");
         s.penalty += penalty.item<double>();
         loss = loss + cfg_.gradient_penalty * penalty;
       }
@@ -194,8 +204,11 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
     }
   }
   if (steps > 0) s.loss /= steps, s.penalty /= steps;
+  check_weights();
   return s;
 }
+
+void Discriminator::check_weights() const { mimic::check_weights(*net_, "net", "discriminator"); }
 
 void Discriminator::drop_training_state() {
   optimizer_->state().clear();

@@ -6,6 +6,7 @@
 // update), saved with the network.
 #include <torch/torch.h>
 
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -97,9 +98,15 @@ class Discriminator {
   // Per-sample reward [batch] by the configured loss's rule (no gradients).
   torch::Tensor reward(const torch::Tensor& features);
   // M epochs on the newest policy features [samples, input] (joined to the replay buffer).
+  // TrainingDiverged as soon as a loss or the penalty is NaN or infinite, or after the update a
+  // weight is (or has exploded); either leaves the network part-updated, not to be saved.
   DiscriminatorStats update(const torch::Tensor& policy);
 
   FeatureNet& net() { return net_; }
+  // update() polls it between minibatches and throws Interrupted once it returns true.
+  void set_interrupt(std::function<bool()> interrupted) { interrupted_ = std::move(interrupted); }
+  // TrainingDiverged naming the first weight that is NaN, infinite or exploded.
+  void check_weights() const;
   std::int64_t replay_rows() const { return replay_.size(0); }
   // Forgets what only further training needs (Adam moments, the replay pool): for an exported model.
   void drop_training_state();
@@ -123,6 +130,7 @@ class Discriminator {
   FeatureNet net_{nullptr};
   std::unique_ptr<torch::optim::Adam> optimizer_;
   std::mt19937_64 rng_;  // minibatches, expert draws, interpolation coefficients
+  std::function<bool()> interrupted_;
 };
 
 }  // namespace mimic

@@ -1,6 +1,9 @@
 #include "learn/networks.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 
@@ -23,6 +26,34 @@ std::int64_t parameter_count(const torch::nn::Module& m) {
   return n;
 }
 
+std::uint64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : std::uint64_t{1} << 40;
+}
+
+void check_fits_memory(double bytes, const std::string& what) {
+  const auto available = static_cast<double>(physical_memory_bytes());
+  if (bytes <= available) return;
+  char text[160];
+  std::snprintf(text, sizeof text, "about %.1f GiB, more than this machine's %.1f GiB of memory", bytes / 1073741824.0, available / 1073741824.0);
+  throw Error(what + " takes " + text);
+}
+
+// Trainable values of a FeatureNet of this shape, counted before any is allocated.
+double feature_net_parameters(int input_size, int out_size, const NetworkConfig& cfg, std::string& shape) {
+  double n = 0, width = input_size;
+  shape = std::to_string(input_size);
+  if (cfg.history > 1) {
+    const double frame = static_cast<double>(input_size) / cfg.history, g = cfg.gru_size;
+    n += 3 * (frame * g + g * g + 2 * g);
+    width = g;
+    shape += " -> GRU " + std::to_string(cfg.gru_size);
+  }
+  for (int h : cfg.hidden) n += (width + 1) * h, width = h, shape += " -> " + std::to_string(h);
+  shape += " -> " + std::to_string(out_size);
+  return n + (width + 1) * out_size;
+}
+
 namespace {
 
 void init_linear(torch::nn::Linear& l, const std::string& kind, double scale) {
@@ -41,6 +72,11 @@ FeatureNetImpl::FeatureNetImpl(int input_size, int out_size, const NetworkConfig
   if (input_size < 1 || out_size < 1) throw Error("network: input and output sizes must be positive");
   if (input_size % cfg.history != 0)
     throw Error("network: input of " + std::to_string(input_size) + " values is not " + std::to_string(cfg.history) + " equal frames");
+  // Before anything is allocated: weights, gradients and Adam's two moments, 4 bytes each.
+  std::string shape;
+  const double parameters = feature_net_parameters(input_size, out_size, cfg, shape);
+  check_fits_memory(16 * parameters, "a network " + shape + " (" + std::to_string(static_cast<long long>(parameters)) +
+                                         " parameters) trained with Adam");
   int width = input_size;
   if (history_ > 1) {
     gru_ = register_module("gru", torch::nn::GRU(torch::nn::GRUOptions(input_size / history_, cfg.gru_size).batch_first(true)));

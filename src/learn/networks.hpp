@@ -48,6 +48,15 @@ class ValueNetImpl : public torch::nn::Module {
 };
 TORCH_MODULE(ValueNet);
 
+// The machine's physical memory; Error "<what> takes about X GiB, more than this machine's Y GiB"
+// where `bytes` exceed it (checked before a network or a buffer is allocated: a config asking for
+// more would otherwise die in the allocator, or swap for hours).
+std::uint64_t physical_memory_bytes();
+void check_fits_memory(double bytes, const std::string& what);
+// Trainable values of a network of this shape (FeatureNet's), counted without allocating;
+// `shape` receives it in words ("17 -> 64 -> 64 -> 6").
+double feature_net_parameters(int input_size, int out_size, const NetworkConfig& cfg, std::string& shape);
+
 // Normal initialisation redrawn until every value lies within two standard deviations.
 void truncated_normal_(torch::Tensor t, double std);
 // Number of trainable and fixed parameters.

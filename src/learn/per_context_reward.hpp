@@ -24,6 +24,12 @@ class PerContextRewardSource : public RewardSource {
   // Each part's metrics with the suffix _c<k> (its samples only).
   std::vector<std::pair<std::string, double>> update(const Rollout& rollout) override;
   void drop_training_state() override;
+  void set_interrupt(std::function<bool()> interrupted) override {
+    for (auto& p : parts_) p->set_interrupt(interrupted);
+  }
+  void check_weights() const override {
+    for (const auto& p : parts_) p->check_weights();
+  }
   void save(torch::serialize::OutputArchive& a) const override;
   void load(torch::serialize::InputArchive& a) override;
   // From a run without contexts: every part starts as its single discriminator (whose inputs

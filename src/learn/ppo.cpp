@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <limits>
 #include <thread>
 
 namespace mimic {
@@ -33,12 +34,20 @@ std::vector<torch::Tensor> minibatches(std::int64_t n, int size, std::mt19937_64
   return out;
 }
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string at_epoch(int iteration, int epoch) { return "iteration " + std::to_string(iteration) + ", epoch " + std::to_string(epoch + 1); }
+
 void check_finite(const torch::Tensor& loss, const char* what, int iteration, int epoch) {
-  const double v = loss.item<double>();
-  if (!std::isfinite(v))
-    throw TrainingDiverged("iteration " + std::to_string(iteration) + ", epoch " + std::to_string(epoch + 1) + ": the " + what +
-                           " loss is " + (std::isnan(v) ? "NaN" : "infinite") + "; stopping without saving (the last checkpoint is kept). "
-                           "Lower the learning rate or check the environment's rewards and observations.");
+  check_diverged(loss.item<double>(), -kInf, kInf, at_epoch(iteration, epoch), std::string("the ") + what + " loss");
+}
+
+// The gradient's norm over `params` (clipped to `max_norm` when that is > 0); TrainingDiverged
+// when it is not finite.
+double clip_and_check_gradient(const std::vector<torch::Tensor>& params, double max_norm, const char* what, int iteration, int epoch) {
+  const double norm = torch::nn::utils::clip_grad_norm_(params, max_norm > 0 ? max_norm : kInf);
+  check_diverged(norm, -kInf, kInf, at_epoch(iteration, epoch), std::string("the ") + what + " gradient's norm");
+  return norm;
 }
 
 }  // namespace
@@ -78,9 +87,10 @@ void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats
       torch::Tensor loss = clipped_surrogate_loss(ratio, adv, p.clip) - p.entropy * entropy;
       if (kl_.beta() > 0) loss = loss + kl_.beta() * kl;
       check_finite(loss, "policy", iteration, epoch);
+      if (interrupted_ && interrupted_()) throw Interrupted("stopped during the policy update of iteration " + std::to_string(iteration));
       policy_opt_->zero_grad();
       loss.backward();
-      if (p.max_grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, p.max_grad_norm);
+      s.policy_grad_norm = std::max(s.policy_grad_norm, clip_and_check_gradient(params, p.max_grad_norm, "policy", iteration, epoch));
       policy_opt_->step();
       loss_sum += loss.item<double>();
       kl_sum += kl.item<double>();
@@ -93,6 +103,8 @@ void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats
     s.entropy = ent_sum / batches;
     s.clip_fraction = clip_sum / batches;
     s.policy_epochs = epoch + 1;
+    // The early stop cannot fire on a NaN; a KL this large is a policy thrown away, not an update.
+    check_diverged(s.kl, -1.0, divergence::kMaxKl, at_epoch(iteration, epoch), "the KL between the old and the new policy");
     if (kl_.should_stop(s.kl)) break;
   }
   if (cfg_.ppo.kl_penalty && s.policy_epochs > 0) kl_.update(s.kl);
@@ -101,6 +113,7 @@ void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats
 
 void PpoLearner::update_value(const PpoBatch& b, std::mt19937_64& rng, PpoStats& s, int iteration) {
   const PpoConfig& p = cfg_.ppo;
+  double value_grad_norm = 0;  // written to s at the end: the policy's thread writes s too
   const auto params = value_->parameters();
   for (int epoch = 0; epoch < p.value_epochs; ++epoch) {
     double loss_sum = 0;
@@ -109,15 +122,17 @@ void PpoLearner::update_value(const PpoBatch& b, std::mt19937_64& rng, PpoStats&
       const torch::Tensor v = value_->forward(b.input.index_select(0, idx));
       const torch::Tensor loss = value_loss(v, b.old_value.index_select(0, idx), b.target.index_select(0, idx), p.value_clip);
       check_finite(loss, "value", iteration, epoch);
+      if (interrupted_ && interrupted_()) throw Interrupted("stopped during the value update of iteration " + std::to_string(iteration));
       value_opt_->zero_grad();
       loss.backward();
-      if (p.max_grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, p.max_grad_norm);
+      value_grad_norm = std::max(value_grad_norm, clip_and_check_gradient(params, p.max_grad_norm, "value", iteration, epoch));
       value_opt_->step();
       loss_sum += loss.item<double>();
       ++batches;
     }
     s.value_loss = loss_sum / batches;
   }
+  s.value_grad_norm = value_grad_norm;
 }
 
 PpoStats PpoLearner::update(const PpoBatch& batch, std::mt19937_64& rng, bool parallel_value, int iteration) {
@@ -158,11 +173,14 @@ PpoStats PpoLearner::update(const PpoBatch& batch, std::mt19937_64& rng, bool pa
 }
 
 void PpoLearner::check_parameters(int iteration) const {
-  for (const auto* net : {static_cast<const torch::nn::Module*>(policy_.get()), static_cast<const torch::nn::Module*>(value_.get())})
-    for (const auto& p : net->named_parameters())
-      if (!torch::isfinite(p.value()).all().item<bool>())
-        throw TrainingDiverged("iteration " + std::to_string(iteration) + ": parameter '" + net->name() + "." + p.key() +
-                               "' holds NaN or infinity; stopping without saving (the last checkpoint is kept).");
+  const std::string where = "iteration " + std::to_string(iteration);
+  check_weights(*policy_, policy_->name(), where);
+  check_weights(*value_, value_->name(), where);
+  const torch::Tensor log_std = policy_->log_std().detach();
+  if (log_std.numel() > 0) {
+    check_diverged(log_std.min().item<double>(), divergence::kMinLogStd, divergence::kMaxLogStd, where, "the policy's smallest log sigma");
+    check_diverged(log_std.max().item<double>(), divergence::kMinLogStd, divergence::kMaxLogStd, where, "the policy's largest log sigma");
+  }
 }
 
 }  // namespace mimic

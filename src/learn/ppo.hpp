@@ -8,16 +8,12 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "learn/divergence.hpp"
 #include "learn/networks.hpp"
 #include "learn/ppo_loss.hpp"
 
 namespace mimic {
 
-// A loss or a parameter became NaN or infinite: the run stops instead of saving a broken model.
-class TrainingDiverged : public Error {
- public:
-  using Error::Error;
-};
 
 struct PpoBatch {
   torch::Tensor input;      // [n, in] normalised
@@ -33,6 +29,8 @@ struct PpoStats {
   double beta = 0;          // KL penalty weight after this update
   int policy_epochs = 0;    // epochs run (fewer than configured after an early stop)
   double policy_lr = 0, value_lr = 0;
+  // The largest gradient norm of a minibatch (before clipping), of each network.
+  double policy_grad_norm = 0, value_grad_norm = 0;
 };
 
 class PpoLearner {
@@ -47,10 +45,14 @@ class PpoLearner {
 
   // Learning rates, and a fixed covariance's log sigma, at `progress` in [0, 1] of the run (the config's schedules).
   void set_progress(double progress);
-  // One PPO update on a batch. `iteration` only labels error messages.
+  // One PPO update on a batch. `iteration` only labels error messages. TrainingDiverged as soon
+  // as a loss, the KL, a gradient norm, the log sigma or a weight is non-finite or past its bound
+  // (divergence.hpp); Interrupted between minibatches once `interrupted` (set_interrupt) says so.
+  // Either leaves the networks part-updated: the caller must not save them.
   PpoStats update(const PpoBatch& batch, std::mt19937_64& rng, bool parallel_value, int iteration);
-  // TrainingDiverged naming the first parameter that is not finite.
+  // TrainingDiverged naming the first parameter that is not finite or has exploded.
   void check_parameters(int iteration) const;
+  void set_interrupt(std::function<bool()> interrupted) { interrupted_ = std::move(interrupted); }
 
  private:
   void update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats& s, int iteration);
@@ -61,6 +63,7 @@ class PpoLearner {
   ValueNet value_{nullptr};
   std::unique_ptr<torch::optim::Optimizer> policy_opt_, value_opt_;
   KlController kl_;
+  std::function<bool()> interrupted_;
 };
 
 }  // namespace mimic

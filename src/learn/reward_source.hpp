@@ -3,6 +3,7 @@
 // per sample of a rollout and sums them with their weights; sources that learn (discriminators)
 // update after the policy and save their state with the checkpoint. Tracking, GAIL and ICCGAN
 // rewards plug in here without touching the trainer.
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -27,6 +28,12 @@ class RewardSource {
   virtual std::vector<double> rewards(const Rollout& rollout) = 0;
   // After the policy update; returns named metrics for the log.
   virtual std::vector<std::pair<std::string, double>> update(const Rollout&) { return {}; }
+  // Polled between the source's own learning steps in update(): once it returns true, update()
+  // throws Interrupted (the source is then part-updated: not to be saved).
+  virtual void set_interrupt(std::function<bool()>) {}
+  // TrainingDiverged naming the first weight of the source's networks that is NaN, infinite or
+  // exploded (divergence.hpp); update() checks its losses and weights itself.
+  virtual void check_weights() const {}
   // For an exported model: forget what only further training needs (optimiser moments, replay).
   virtual void drop_training_state() {}
   virtual void save(torch::serialize::OutputArchive&) const {}

@@ -1,5 +1,7 @@
 #include "learn/run_log.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -88,40 +90,67 @@ std::vector<double> MetricsTable::column(const std::string& name) const {
   throw Error("metrics: no column '" + name + "'");
 }
 
+namespace {
+
+// The rows of a resumed run's metrics.csv up to its checkpoint's iteration, as text, after the
+// whole file has been read back: a header of column names starting with "iteration", then rows
+// that parse, in order. Only a last line without its newline (a row cut by a kill, which is
+// always after the checkpoint's rows) may be dropped unread. Error naming the file and the line,
+// the file untouched, otherwise.
+std::string rows_to_keep(const std::filesystem::path& csv, int resume_iteration, std::vector<std::string>& columns) {
+  std::string text = read_text_file(csv);
+  if (!text.empty() && text.back() != '\n') text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
+  const std::string refuse = "; the run was not resumed, so that no row of it is lost: repair the file or move it away";
+  MetricsTable table;
+  try {
+    table = parse_metrics_csv(text, csv.string());
+  } catch (const Error& e) {
+    throw Error(e.what() + refuse);
+  }
+  if (table.columns.empty()) return "";
+  const bool named = std::all_of(table.columns.begin(), table.columns.end(), [](const std::string& c) {
+    return !c.empty() && std::all_of(c.begin(), c.end(), [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
+  });
+  if (table.columns.front() != "iteration" || !named)
+    throw ParseError(csv.string(), 1, "not a metrics header (column names of letters, digits and '_', 'iteration' first)" + refuse);
+  double previous = 0;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const double it = table.rows[r].front();
+    if (!(it > previous) || it != std::floor(it))
+      throw ParseError(csv.string(), static_cast<int>(r) + 2, "iteration " + std::to_string(it) + " does not follow " + std::to_string(previous) + refuse);
+    previous = it;
+  }
+  columns = table.columns;
+  std::istringstream in(text);
+  std::string line, kept;
+  std::size_t row = 0;
+  for (bool header = true; std::getline(in, line);) {
+    if (line.empty()) continue;
+    if (!header && table.rows[row++].front() > resume_iteration) break;
+    kept += line + "\n";
+    header = false;
+  }
+  return kept;
+}
+
+}  // namespace
+
 RunLog::RunLog(const std::filesystem::path& run_dir, bool tensorboard, int resume_iteration)
     : csv_path_(run_dir / "metrics.csv") {
   std::filesystem::create_directories(run_dir);
   if (resume_iteration >= 0 && std::filesystem::exists(csv_path_)) {
     // Keep the header and the rows the checkpoint covers; rows written after it are redone.
-    std::istringstream in(read_text_file(csv_path_));
-    std::string line, kept;
-    bool header = true;
-    while (std::getline(in, line)) {
-      if (line.empty()) continue;
-      if (header) {
-        columns_ = split(line);
-        kept += line + "\n";
-        header = false;
-        continue;
-      }
-      const auto cells = split(line);
-      if (cells.size() != columns_.size()) break;  // a row cut by the kill
-      int it = 0;
-      try {
-        it = std::stoi(cells[0]);
-      } catch (const std::exception&) {
-        break;
-      }
-      if (it > resume_iteration) break;
-      kept += line + "\n";
-    }
-    write_file_atomic(csv_path_, kept);
+    write_file_atomic(csv_path_, rows_to_keep(csv_path_, resume_iteration, columns_));
   } else {
     write_file_atomic(csv_path_, "");
   }
   csv_.open(csv_path_, std::ios::app);
   if (!csv_) throw Error(csv_path_.string() + ": cannot open for writing");
-  if (tensorboard) tb_ = std::make_unique<TensorBoardWriter>(run_dir / "tensorboard");
+  if (tensorboard) {
+    // Steps after the checkpoint are written again by the resumed run: the old ones go first.
+    if (resume_iteration >= 0) truncate_tensorboard_events(run_dir / "tensorboard", resume_iteration);
+    tb_ = std::make_unique<TensorBoardWriter>(run_dir / "tensorboard");
+  }
 }
 
 RunLog::~RunLog() = default;

@@ -1,7 +1,9 @@
 #pragma once
 // A training run's metrics: one CSV row per iteration (metrics.csv) and TensorBoard scalars
-// (tensorboard/events.*). On resume the CSV keeps only the rows up to the checkpoint's
-// iteration, so a row is never written twice; TensorBoard gets a new event file.
+// (tensorboard/events.*). On resume the CSV, read back whole first (an Error naming the file and
+// line, nothing changed, where it does not parse), keeps only the rows up to the checkpoint's
+// iteration, and the old event files only the steps up to it, so that no step is written twice;
+// TensorBoard gets a new event file.
 #include <filesystem>
 #include <fstream>
 #include <memory>

@@ -60,7 +60,23 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   if (cfg.value.history != cfg.policy.net.history)
     throw Error(cfg.source + ": 'value.history' (" + std::to_string(cfg.value.history) + ") must equal 'policy.history' (" +
                 std::to_string(cfg.policy.net.history) + "): both see the same input");
-  learner = std::make_unique<PpoLearner>(collector->input_size(), collector->action_size(), cfg);
+  {
+    // Before anything large is allocated: both networks trained with Adam (4 bytes a value for
+    // weights, gradients and two moments) and a rollout's buffers (per sample: normalised and raw
+    // inputs, the next frame, the PPO batch's copy).
+    std::string policy_shape, value_shape;
+    const double networks = 16 * (feature_net_parameters(collector->input_size(), collector->action_size(), cfg.policy.net, policy_shape) +
+                                  feature_net_parameters(collector->input_size(), 1, cfg.value, value_shape));
+    const double per_sample = 16.0 * collector->input_size() + 8.0 * collector->frame_size() + 24.0 * collector->action_size() + 64;
+    const double buffers = cfg.collect.mode == "episodes" ? 0.0 : per_sample * cfg.collect.samples;
+    check_fits_memory(networks + buffers, cfg.source + ": the policy (" + policy_shape + "), the value network (" + value_shape +
+                                              ") and 'collect.samples' " + std::to_string(cfg.collect.samples) + " together");
+  }
+  try {
+    learner = std::make_unique<PpoLearner>(collector->input_size(), collector->action_size(), cfg);
+  } catch (const Error& e) {
+    throw Error(cfg.source + ": 'policy' and 'value': " + e.what());
+  }
   obs_norm = RunningNormalizer(collector->input_size(), cfg.normalize.clip);
   return_norm = RunningNormalizer(1, 0.0);
   discounted_return.assign(static_cast<std::size_t>(cfg.collect.envs), 0.0);
@@ -76,6 +92,13 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   }
   for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, context));
   if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(iteration + 1, n); });
+  if (opts.stop_requests) {
+    // Collection and learning stop within a step or a minibatch of a request (Trainer::run).
+    auto requested = [stops = opts.stop_requests] { return stops() > 0; };
+    collector->set_interrupt(requested);
+    learner->set_interrupt(requested);
+    for (auto& source : rewards) source.second->set_interrupt(requested);
+  }
 }
 
 void Trainer::Impl::compute_rewards(Rollout& r) {
@@ -85,7 +108,9 @@ void Trainer::Impl::compute_rewards(Rollout& r) {
     if (part.size() != r.reward.size())
       throw Error("reward source '" + source->name() + "' gave " + std::to_string(part.size()) + " rewards for " + std::to_string(r.size()) + " samples");
     for (std::size_t i = 0; i < part.size(); ++i) {
-      if (!std::isfinite(part[i])) throw Error("reward source '" + source->name() + "' gave a non-finite reward");
+      if (!std::isfinite(part[i]))
+        throw TrainingDiverged("iteration " + std::to_string(iteration + 1) + ": reward source '" + source->name() + "' gave a non-finite reward (" +
+                               std::to_string(part[i]) + " for sample " + std::to_string(i) + "); " + divergence::kStopping);
       r.reward[i] += w * part[i];
     }
   }
@@ -149,8 +174,13 @@ IterationMetrics Trainer::Impl::iterate() {
   const Stopwatch learning;
   const PpoStats s = learner->update(make_batch(r), shuffle_rng, cfg.collect.threads > 1, iteration + 1);
   std::vector<std::pair<std::string, double>> source_metrics;
-  for (auto& [w, source] : rewards)
-    for (auto& m : source->update(r)) source_metrics.emplace_back(source->name() + "_" + m.first, m.second);
+  for (auto& [w, source] : rewards) {
+    try {
+      for (auto& m : source->update(r)) source_metrics.emplace_back(source->name() + "_" + m.first, m.second);
+    } catch (const TrainingDiverged& e) {
+      throw TrainingDiverged("iteration " + std::to_string(iteration + 1) + ", reward source '" + source->name() + "', " + e.what());
+    }
+  }
   if (cfg.normalize.observations)
     obs_norm.update(Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(r.raw_input.data(), r.size(), r.input_size)));
   const double learn_seconds = learning.seconds();
@@ -181,6 +211,8 @@ IterationMetrics Trainer::Impl::iterate() {
   m.set("explained_variance", s.explained_variance);
   m.set("kl_beta", s.beta);
   m.set("policy_epochs", s.policy_epochs);
+  m.set("policy_grad_norm", s.policy_grad_norm);
+  m.set("value_grad_norm", s.value_grad_norm);
   m.set("policy_lr", s.policy_lr);
   m.set("value_lr", s.value_lr);
   m.set("time_simulation", times.simulation);
@@ -226,6 +258,27 @@ void require_same_config(const TrainConfig& cfg, const std::filesystem::path& sa
               "); resume with `mimic train --resume -o " + saved_path.parent_path().string() + "` (--iterations and --threads may change)");
 }
 
+// `f()`, whose Error about RUN/checkpoint.pt gains what RUN/checkpoint.prev.pt offers instead.
+template <class F>
+bool with_previous_hint(const std::filesystem::path& dir, F&& f) {
+  try {
+    return f();
+  } catch (const TrainingDiverged&) {
+    throw;
+  } catch (const Error& e) {
+    const std::filesystem::path previous = dir / "checkpoint.prev.pt";
+    if (!std::filesystem::exists(previous)) throw;
+    std::string offer;
+    try {
+      offer = "; the previous checkpoint " + previous.string() + " is intact (iteration " + std::to_string(checkpoint_iteration(previous)) +
+              "): move it over checkpoint.pt to resume from there";
+    } catch (const Error& p) {
+      offer = "; the previous checkpoint is unusable too (" + std::string(p.what()) + ")";
+    }
+    throw Error(e.what() + offer);
+  }
+}
+
 }  // namespace
 
 Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
@@ -240,8 +293,10 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
   if (resume && std::filesystem::exists(dir / "config.yaml")) require_same_config(cfg, dir / "config.yaml");
+  // What an interrupted atomic write left (a kill in the middle of a checkpoint): never read.
+  if (!dir.empty()) remove_stale_temporaries(dir), remove_stale_temporaries(dir / "snapshots");
   // Before the reward sources are built: an exported model's expert files may not travel with it.
-  if (resume && is_exported_checkpoint(dir / "checkpoint.pt"))
+  if (resume && with_previous_hint(dir, [&] { return is_exported_checkpoint(dir / "checkpoint.pt"); }))
     throw Error((dir / "checkpoint.pt").string() +
                 ": an exported model (mimic export: no optimiser moments, no discriminator replay) acts but is not resumed; resume the run it was exported from");
   const std::string text = cfg.text, cfg_source = cfg.source;
@@ -256,7 +311,10 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   }
   if (dir.empty()) return;
   if (resume) {
-    load_checkpoint(dir / "checkpoint.pt");
+    with_previous_hint(dir, [&] {
+      load_checkpoint(dir / "checkpoint.pt");
+      return true;
+    });
     // The count this resume goes on to becomes the run's own, so a later plain --resume keeps it.
     if (std::filesystem::exists(dir / "config.yaml")) {
       const std::string saved = read_text_file(dir / "config.yaml");
@@ -282,31 +340,56 @@ Trainer::~Trainer() = default;
 
 IterationMetrics Trainer::iterate() {
   IterationMetrics m = impl_->iterate();
+  // The iteration is complete and healthy (iterate() throws on divergence before this point).
   if (impl_->log) impl_->log->write(m);
   if (impl_->opts.on_iteration) impl_->opts.on_iteration(m);
-  if (impl_->cfg.snapshot_every > 0 && m.iteration % impl_->cfg.snapshot_every == 0 && !impl_->opts.run_dir.empty()) {
-    std::filesystem::create_directories(impl_->opts.run_dir / "snapshots");
-    write_policy_snapshot(*impl_, snapshot_path(impl_->opts.run_dir, m.iteration));
+  const std::filesystem::path& dir = impl_->opts.run_dir;
+  if (impl_->cfg.snapshot_every > 0 && m.iteration % impl_->cfg.snapshot_every == 0 && !dir.empty()) {
+    std::filesystem::create_directories(dir / "snapshots");
+    write_policy_snapshot(*impl_, snapshot_path(dir, m.iteration));
   }
   if (m.iteration % impl_->cfg.checkpoint_every == 0) {
-    if (!impl_->opts.run_dir.empty()) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
+    if (!dir.empty()) impl_->save_run_checkpoint(serialize_checkpoint(*impl_));
     // Episodes restart at every checkpoint, so that a resumed run matches the uninterrupted one.
     impl_->collector->reset_all();
     std::fill(impl_->discounted_return.begin(), impl_->discounted_return.end(), 0.0);
+  } else if (!dir.empty() && impl_->opts.stop_requests) {
+    // Held in memory, so that a stop in the next iteration still saves this one.
+    impl_->unsaved_checkpoint = serialize_checkpoint(*impl_);
   }
   return m;
 }
 
-void Trainer::run() {
-  const int first = impl_->iteration;
-  while (impl_->iteration < impl_->cfg.iterations) {
-    const int stops = impl_->opts.stop_requests ? impl_->opts.stop_requests() : 0;
-    if (stops >= 2 || (stops == 1 && impl_->iteration % impl_->cfg.checkpoint_every == 0)) break;
-    iterate();
+void Trainer::Impl::save_run_checkpoint(const std::string& bytes) {
+  write_file_atomic_keeping(opts.run_dir / "checkpoint.pt", opts.run_dir / "checkpoint.prev.pt", bytes);
+  unsaved_checkpoint.clear();
+}
+
+RunEnd Trainer::run() {
+  const bool files = !impl_->opts.run_dir.empty();
+  // A fresh run stopped in its first iteration still leaves a checkpoint (of iteration 0).
+  if (files && impl_->opts.stop_requests && !std::filesystem::exists(impl_->opts.run_dir / "checkpoint.pt"))
+    impl_->unsaved_checkpoint = serialize_checkpoint(*impl_);
+  RunEnd end;
+  while (impl_->iteration < impl_->cfg.iterations && !(impl_->opts.stop_requests && impl_->opts.stop_requests() > 0)) {
+    try {
+      iterate();
+    } catch (const Interrupted& e) {
+      end.interrupted = e.what();  // the networks may be part-updated: only the last complete iteration is saved
+      break;
+    }
   }
-  // iterate() has saved at multiples of checkpoint_every; save the last iteration otherwise.
-  const bool saved = impl_->iteration % impl_->cfg.checkpoint_every == 0 && impl_->iteration > first;
-  if (!impl_->opts.run_dir.empty() && !saved) save_checkpoint(impl_->opts.run_dir / "checkpoint.pt");
+  end.stopped = impl_->iteration < impl_->cfg.iterations;
+  end.iteration = impl_->iteration;
+  if (!files) return end;
+  if (!impl_->unsaved_checkpoint.empty()) {
+    impl_->save_run_checkpoint(impl_->unsaved_checkpoint);
+  } else if (!end.stopped && impl_->iteration % impl_->cfg.checkpoint_every != 0) {
+    impl_->save_run_checkpoint(serialize_checkpoint(*impl_));  // a run not stopped ends with its last iteration saved
+  } else if (!std::filesystem::exists(impl_->opts.run_dir / "checkpoint.pt")) {
+    impl_->save_run_checkpoint(serialize_checkpoint(*impl_));
+  }
+  return end;
 }
 
 long long Trainer::policy_parameters() const {
@@ -324,7 +407,7 @@ long long Trainer::samples() const { return impl_->samples; }
 int Trainer::input_size() const { return impl_->collector->input_size(); }
 int Trainer::action_size() const { return impl_->collector->action_size(); }
 const TrainConfig& Trainer::config() const { return impl_->cfg; }
-void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(*impl_, path); }
+void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_file_atomic(path, serialize_checkpoint(*impl_)); }
 void Trainer::load_checkpoint(const std::filesystem::path& path) { read_checkpoint(*impl_, path); }
 
 void Trainer::export_model(const std::filesystem::path& path) {
@@ -332,7 +415,7 @@ void Trainer::export_model(const std::filesystem::path& path) {
   impl_->learner->value_optimizer().state().clear();
   for (auto& source : impl_->rewards) source.second->drop_training_state();
   impl_->acting_only = true;
-  write_checkpoint(*impl_, path);
+  write_file_atomic(path, serialize_checkpoint(*impl_));
 }
 
 std::filesystem::path Trainer::snapshot_path(const std::filesystem::path& run, int iteration) {

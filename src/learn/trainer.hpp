@@ -4,7 +4,9 @@
 //
 // Run directory: config.yaml (the config as given, with the iteration count the run goes to, which a
 // resume rewrites to its own so that the next plain resume keeps it), checkpoint.pt (written
-// atomically every `checkpoint_every` iterations and at exit), metrics.csv, tensorboard/events.*.
+// atomically and durably every `checkpoint_every` iterations and at exit; the one it replaced is
+// kept as checkpoint.prev.pt), metrics.csv, tensorboard/events.*. Checkpoints carry CRC-32s that
+// every read verifies; a diverged state is never saved (docs/reliability.md).
 // Reproducibility: the same config and seed give the same metrics, whatever the thread count.
 // Every checkpoint also restarts the episodes in progress, so that a run resumed from a periodic
 // checkpoint continues exactly as the uninterrupted run did (one written between those, at an
@@ -34,16 +36,24 @@ struct TrainOptions {
   // own run (or model) on that behaviour alone, in context order; after init_from, so these win.
   // Not with resume.
   std::vector<std::filesystem::path> init_discriminators_from;
-  // Stop requests so far, polled between iterations. One: go on to the next multiple of
-  // checkpoint_every, where episodes restart anyway, so that a resumed run continues exactly as one
-  // never stopped. Two or more: stop after the current iteration; its checkpoint restarts the
-  // episodes in progress there, so the resumed run departs from an unstopped one at that point.
+  // Stop requests so far (Ctrl-C, SIGTERM), polled between iterations and within them, after every
+  // collection step and learning minibatch: from the first, run() stops within one of those and
+  // saves the last completed iteration (held in memory between checkpoints for this). A stop
+  // between checkpoint_every multiples restarts the episodes in progress there, so the resumed run
+  // departs from an unstopped one at that point.
   std::function<int()> stop_requests;
   std::function<void(const IterationMetrics&)> on_iteration;  // progress output
   // The program's own environments instead of the config's `env` section (a game, a test).
   EnvFactory env_factory;
   // Test hook: called after every collection step with (iteration, samples so far in it).
   std::function<void(int, int)> step_hook;
+};
+
+// How Trainer::run ended.
+struct RunEnd {
+  int iteration = 0;         // the last completed iteration: the one the run's checkpoint holds
+  bool stopped = false;      // by a stop request, before the config's iteration count
+  std::string interrupted;   // not empty: the stop cut the next iteration short (where, in words)
 };
 
 class Trainer {
@@ -54,8 +64,9 @@ class Trainer {
   Trainer& operator=(const Trainer&) = delete;
 
   // Iterates until the config's iteration count or a stop (TrainOptions::stop_requests), then
-  // checkpoints.
-  void run();
+  // checkpoints the last completed iteration. TrainingDiverged (divergence.hpp) saves nothing: the
+  // last checkpoint written stays the run's.
+  RunEnd run();
   // One iteration (collect, learn, log; a checkpoint when one is due).
   IterationMetrics iterate();
 

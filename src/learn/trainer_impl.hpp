@@ -38,6 +38,8 @@ struct Trainer::Impl {
   std::vector<std::string> parts_added_by_init;  // observation parts init_from lacked; its inputs were widened
   bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
+  // The last completed iteration's checkpoint when it is not on disk yet (with stop_requests).
+  std::string unsaved_checkpoint;
 
   Impl(TrainConfig c, TrainOptions o);
   IterationMetrics iterate();
@@ -46,14 +48,18 @@ struct Trainer::Impl {
   PpoBatch make_batch(const Rollout& r) const;
   // Gathers the collector's finished ASI episodes in environment order; a gradient step per full batch.
   void update_adaptive_init(IterationMetrics& m);
+  // RUN/checkpoint.pt, the one it replaces kept as RUN/checkpoint.prev.pt.
+  void save_run_checkpoint(const std::string& bytes);
   // Complete episodes on environments of their own (evaluation, recording): training's
   // environments and generators are not touched.
   // `seed` seeds the environments, `rng` draws the action noise.
   Rollout side_episodes(int episodes, std::uint64_t seed, std::mt19937_64& rng, bool deterministic, EpisodeStats& stats);
 };
 
-// Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong.
-void write_checkpoint(const Trainer::Impl& t, const std::filesystem::path& path);
+// Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong. A checkpoint's
+// bytes (a LibTorch zip archive whose entries carry CRC-32s); TrainingDiverged, nothing made, when
+// a network's weights are not finite or have exploded.
+std::string serialize_checkpoint(const Trainer::Impl& t);
 void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path);
 // The policy's weights and observation normaliser alone (a few MB, atomic): what averaging needs.
 // Refused where a checkpoint is read.
@@ -78,5 +84,7 @@ double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>
 void read_policy(Trainer::Impl& t, const std::filesystem::path& path);
 // Whether the file is an acting-only export (mimic export), read without building a trainer.
 bool is_exported_checkpoint(const std::filesystem::path& path);
+// The iteration a checkpoint holds, its integrity checked; Error naming the file otherwise.
+int checkpoint_iteration(const std::filesystem::path& path);
 
 }  // namespace mimic

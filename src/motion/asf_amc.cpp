@@ -513,7 +513,7 @@ class AmcParser {
       // F_root = R_root * C_root = C_root * M_root.
       p.rot[0] = canonical((asf_.axis_rot[0] * m).normalized());
       p.root_pos = asf_.basis * (pos * asf_.metres_per_unit);
-      if (!p.root_pos.allFinite()) r_.sc.fail_at(line, where() + ": position is too large");
+      if (!plausible_position(p.root_pos)) r_.sc.fail_at(line, where() + ": position is beyond 1e4 m of the origin (a unit or file error)");
     } else {
       p.rot[j] = canonical(m);
     }

@@ -170,6 +170,8 @@ class BvhParser {
         if (j == 0) {
           p.rot[0] = q;
           p.root_pos = clip_.skeleton.joints[0].offset + to_mimic(pos_src);
+          if (!plausible_position(p.root_pos))
+            sc_.fail_at(line, "frame " + std::to_string(f) + ": root position is beyond 1e4 m of the origin (a unit or file error)");
         } else {
           p.rot[j] = q;
           check_fixed_translation(j, f, line, pos_src, first_pos);

@@ -33,7 +33,7 @@ void Clip::validate() const {
     if (p.rot.size() != nj)
       throw Error(where + ": has " + std::to_string(p.rot.size()) + " rotations, skeleton has " +
                   std::to_string(nj) + " joints");
-    if (!p.root_pos.allFinite()) throw Error(where + ": root position is not finite");
+    if (!plausible_position(p.root_pos)) throw Error(where + ": root position is not finite or beyond 1e4 m of the origin");
     for (std::size_t j = 0; j < nj; ++j) {
       if (!p.rot[j].coeffs().allFinite() || std::abs(p.rot[j].norm() - 1.0) > 1e-4)
         throw Error(where + ": rotation of joint '" + skeleton.joints[j].name + "' is not a unit quaternion");

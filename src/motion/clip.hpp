@@ -25,6 +25,12 @@ enum class LoopMode { None, Wrap };
 // capture is far below (10 min at 120 Hz of 31 joints is 2.2 M), and a tiny malformed file
 // cannot make an importer allocate without bound.
 constexpr long kMaxClipRotations = 1L << 25;
+// No coordinate of a clip (a root position, a bone offset) lies further than this from the origin,
+// in metres: 10 km is beyond any capture volume, and larger values are a unit or file error
+// (1e308 would overflow in the simulator). Importers refuse them, naming the line.
+constexpr double kMaxCoordinate = 1e4;
+// Whether every coordinate of `v` is finite and within kMaxCoordinate.
+inline bool plausible_position(const Vec3& v) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
 const char* to_string(LoopMode m);
 
 struct Clip {

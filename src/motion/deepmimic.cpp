@@ -239,6 +239,7 @@ Clip parse_deepmimic_motion(std::string_view text, const std::string& source, co
     last_dt = dt;
     Pose p = rest_pose(sk);
     p.root_pos = to_mimic(Vec3(row[1], row[2], row[3]));
+    if (!plausible_position(p.root_pos)) js.fail(fr, where + ": root position is beyond 1e4 m of the origin (a unit or file error)");
     std::size_t k = 4;
     auto read_quat = [&](const std::string& joint) {
       Quat q(row[k], row[k + 1], row[k + 2], row[k + 3]);

@@ -69,6 +69,7 @@ void Skeleton::validate() const {
     }
     if (!j.offset.allFinite() || !j.rest.coeffs().allFinite())
       throw Error(where + ": offset or rest rotation is not finite");
+    if (j.offset.cwiseAbs().maxCoeff() > 1e4) throw Error(where + ": offset is beyond 1e4 m (a unit or file error)");
     if (std::abs(j.rest.norm() - 1.0) > 1e-6) throw Error(where + ": rest rotation is not a unit quaternion");
     if (j.type == JointType::Revolute && (!j.axis.allFinite() || std::abs(j.axis.norm() - 1.0) > 1e-6))
       throw Error(where + ": revolute axis is not a unit vector");
@@ -78,7 +79,7 @@ void Skeleton::validate() const {
     if (s.joint < 0 || s.joint >= num_joints())
       throw Error("site '" + s.name + "' is attached to joint " + std::to_string(s.joint) + ", which does not exist");
     if (!site_names.insert(s.name).second) throw Error("duplicate site name '" + s.name + "'");
-    if (!s.offset.allFinite()) throw Error("site '" + s.name + "' has a non-finite offset");
+    if (!s.offset.allFinite() || s.offset.cwiseAbs().maxCoeff() > 1e4) throw Error("site '" + s.name + "' has a non-finite offset or one beyond 1e4 m");
   }
 }
 

@@ -88,7 +88,8 @@ TEST(Trainer, CheckpointRoundTripIsBitIdenticalAndContinuesIdentically) {
   a.iterate();
   a.iterate();
   a.save_checkpoint(dir / "c.pt");
-  EXPECT_FALSE(std::filesystem::exists(dir / "c.pt.tmp"));
+  // Written through a temporary beside it (c.pt.tmp<pid>), renamed over it: none is left.
+  for (const auto& f : std::filesystem::directory_iterator(dir)) EXPECT_EQ(f.path().filename(), "c.pt");
 
   Trainer b(config(walker_config(10, 1)));
   b.load_checkpoint(dir / "c.pt");
@@ -166,39 +167,74 @@ TEST(Trainer, ResumesAfterAKillInTheMiddleOfAnIterationAsIfNeverKilled) {
   EXPECT_EQ(event_files, 2);
 }
 
-TEST(Trainer, AStopGoesOnToTheNextCheckpointSoThatTheResumedRunMatchesAndASecondStopsAtOnce) {
-  const auto whole = test::temp_dir("trainer_stop_whole"), stopped = test::temp_dir("trainer_stop"), urgent = test::temp_dir("trainer_stop_now");
+// A stop request (Ctrl-C, SIGTERM) ends the run within one collection step or one learning
+// minibatch, wherever it comes, and the checkpoint holds the last completed iteration, resumable.
+TEST(Trainer, AStopEndsTheRunWithinAStepOrAMinibatchAndSavesTheLastCompletedIteration) {
+  const auto root = test::temp_dir("trainer_stop");
   const std::string text = walker_config(6, 1, 4);
-  {
-    TrainOptions o;
-    o.run_dir = whole;
-    Trainer(config(text), o).run();
-  }
-  // `requests` stop requests from the third poll on (after two iterations); the iteration reached.
-  auto run_stopped = [&](const std::filesystem::path& dir, int requests) {
+  struct Stopped {
+    RunEnd end;
+    int polls_after = 0;  // polls after the request: 0 where the very next check stopped the run
+  };
+  // A request once iteration 3 has collected `samples`; with 1024, its whole batch, the request
+  // comes one poll later, so that it falls in the PPO update.
+  auto run_stopped = [&](const std::filesystem::path& dir, int samples) {
+    struct State {
+      bool armed = false;
+      int skip = 0, after = 0;
+    };
+    auto state = std::make_shared<State>();
+    state->skip = samples == 1024 ? 1 : 0;
     TrainOptions o;
     o.run_dir = dir;
-    int polls = 0;
-    o.stop_requests = [&polls, requests] { return ++polls > 2 ? requests : 0; };
+    o.stop_requests = [state] {
+      if (!state->armed) return 0;
+      if (state->skip > 0) return --state->skip, 0;
+      return ++state->after, 1;
+    };
+    o.step_hook = [state, samples](int iteration, int collected) {
+      if (iteration == 3 && collected >= samples) state->armed = true;
+    };
     Trainer t(config(text), o);
-    t.run();
-    return t.iteration();
+    Stopped s;
+    s.end = t.run();
+    s.polls_after = state->after;
+    return s;
   };
-  // One request (as one Ctrl-C): the run goes on to iteration 4, its next checkpoint, and the
-  // resumed run's metrics are the unstopped run's.
-  EXPECT_EQ(run_stopped(stopped, 1), 4);
-  TrainOptions o;
-  o.run_dir = stopped;
-  o.resume = true;
-  Trainer resumed(config(text), o);
-  EXPECT_EQ(resumed.iteration(), 4);
-  resumed.run();
-  EXPECT_EQ(deterministic_columns(read_metrics_csv(whole / "metrics.csv")), deterministic_columns(read_metrics_csv(stopped / "metrics.csv")));
-  // Two requests (a second Ctrl-C): the run stops after the current iteration, with a checkpoint.
-  EXPECT_EQ(run_stopped(urgent, 2), 2);
-  Trainer check(config(text));
-  check.load_checkpoint(urgent / "checkpoint.pt");
-  EXPECT_EQ(check.iteration(), 2);
+  for (const int samples : {256, 1024}) {
+    const auto dir = root / std::to_string(samples);
+    const Stopped s = run_stopped(dir, samples);
+    EXPECT_TRUE(s.end.stopped);
+    EXPECT_EQ(s.end.iteration, 2);
+    EXPECT_EQ(s.polls_after, 1) << "the first check after the request stopped the run";
+    EXPECT_NE(s.end.interrupted.find(samples == 256 ? "during collection, 256 samples in" : "during the policy update of iteration 3"),
+              std::string::npos)
+        << s.end.interrupted;
+    // Iteration 2 is not a checkpoint multiple (4): it was held in memory and written at the stop.
+    Trainer check(config(text));
+    check.load_checkpoint(dir / "checkpoint.pt");
+    EXPECT_EQ(check.iteration(), 2);
+    EXPECT_EQ(read_metrics_csv(dir / "metrics.csv").rows.size(), 2u);
+    TrainOptions o;
+    o.run_dir = dir;
+    o.resume = true;
+    Trainer resumed(config(text), o);
+    EXPECT_EQ(resumed.iteration(), 2);
+    EXPECT_FALSE(resumed.run().stopped);
+    EXPECT_EQ(resumed.iteration(), 6);
+    EXPECT_EQ(read_metrics_csv(dir / "metrics.csv").column("iteration"), (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  }
+  // A fresh run stopped in its first iteration leaves a checkpoint of iteration 0, which resumes.
+  {
+    TrainOptions o;
+    o.run_dir = root / "first";
+    o.stop_requests = [] { return 1; };
+    Trainer t(config(text), o);
+    EXPECT_EQ(t.run().iteration, 0);
+    Trainer check(config(text));
+    check.load_checkpoint(root / "first" / "checkpoint.pt");
+    EXPECT_EQ(check.iteration(), 0);
+  }
 }
 
 TEST(Trainer, RefusesToOverwriteARunAndToResumeNothing) {
