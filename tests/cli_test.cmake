@@ -387,3 +387,18 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   # A run without a simulated character cannot be compared with a clip.
   run_fails("--clip needs a character environment" eval ${OUT}/moved --episodes 1 --clip ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
 endif()
+
+# Outputs that cannot be made are named errors (exit 1), never an "unexpected failure" (exit 2).
+function(run_fails_named expect)
+  execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}${err}" "${expect}" at)
+  if(NOT rc EQUAL 1 OR at EQUAL -1)
+    message(FATAL_ERROR "mimic ${ARGN}: expected exit 1 naming '${expect}', got ${rc}:\n${out}${err}")
+  endif()
+endfunction()
+file(WRITE ${OUT}/a_file "not a directory")
+run_fails_named("${OUT}/a_file/run: Not a directory" train ${SRC}/configs/walker_ci.yaml -o ${OUT}/a_file/run --iterations 1)
+run_fails_named("${OUT}/a_file: cannot create the directory" motion convert ${OUT}/demo/jumping_jack.mclip -o ${OUT}/a_file/x.mclip)
+# A config with a key given twice would have trained with the first value.
+file(WRITE ${OUT}/twice.yaml "seed: 2\nseed: 3\nenv: {name: planar_walker}\n")
+run_fails_named("twice.yaml:2: key 'seed' is given twice (first on line 1)" train ${OUT}/twice.yaml -o ${OUT}/twice_run)
