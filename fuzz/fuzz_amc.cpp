@@ -28,10 +28,13 @@ const mimic::AsfSkeleton& skeleton() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const mimic::AsfSkeleton& asf = skeleton();
+  mimic::Clip clip;
   try {
-    mimic::parse_amc(mimic::fuzz::as_text(data, size), "fuzz.amc", asf);
+    clip = mimic::parse_amc(mimic::fuzz::as_text(data, size), "fuzz.amc", asf);
   } catch (const mimic::Error&) {
+    return 0;
   }
+  mimic::fuzz::require_valid(clip, data, size);  // what a reader accepts must be a valid clip
   return 0;
 }
 

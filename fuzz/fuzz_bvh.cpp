@@ -1,4 +1,4 @@
-// Fuzz target: BVH import. Any input must parse or raise mimic::Error, never crash.
+// Fuzz target: BVH import. Any input must parse into a valid clip or raise mimic::Error, never crash.
 #include <cstdint>
 #include <string_view>
 
@@ -8,10 +8,13 @@
 #include "motion/bvh.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  mimic::Clip clip;
   try {
-    mimic::parse_bvh(mimic::fuzz::as_text(data, size), "fuzz.bvh");
+    clip = mimic::parse_bvh(mimic::fuzz::as_text(data, size), "fuzz.bvh");
   } catch (const mimic::Error&) {
+    return 0;
   }
+  mimic::fuzz::require_valid(clip, data, size);  // what a reader accepts must be a valid clip
   return 0;
 }
 

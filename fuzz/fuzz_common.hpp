@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the fuzz targets.
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,6 +16,24 @@ namespace mimic::fuzz {
 
 inline std::string_view as_text(const uint8_t* data, size_t size) {
   return {reinterpret_cast<const char*>(data), size};
+}
+
+// An input the reader accepted but whose result breaks a promise: saved as fuzz-failure.bin in
+// the working directory (give it back to the target to repeat the failure), then abort.
+[[noreturn]] inline void fail_with_input(const uint8_t* data, size_t size, const std::string& why) {
+  std::ofstream("fuzz-failure.bin", std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  std::fprintf(stderr, "fuzz: an accepted input breaks a promise (%s); the input is in fuzz-failure.bin\n", why.c_str());
+  std::abort();
+}
+
+// Every clip an importer accepts must be valid (Clip::validate).
+template <class ClipT>
+void require_valid(const ClipT& clip, const uint8_t* data, size_t size) {
+  try {
+    clip.validate();
+  } catch (const std::exception& e) {
+    fail_with_input(data, size, e.what());
+  }
 }
 
 // Shared data files (relative to ../shared/data) as seeds, each cut to at most `max_bytes`

@@ -61,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const mimic::Error&) {
       continue;
     }
-    clip.validate();  // a clip the importer accepts must be valid; an Error here escapes
+    mimic::fuzz::require_valid(clip, data, size);  // what a reader accepts must be a valid clip
   }
   return 0;
 }

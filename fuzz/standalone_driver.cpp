@@ -3,6 +3,8 @@
 // target's seeds for a bounded number of runs or seconds. Its job in the test suite is to prove
 // that no input crashes an importer (run under ASan+UBSan in the sanitizer build).
 //   usage: fuzz_x [--seconds S] [--runs N] [--seed K] [FILE...]   (FILEs: extra seeds / repro)
+// Without --seed each run draws its own and prints it first, so that a run that finds a crash is
+// repeated exactly by passing that seed.
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -99,16 +101,20 @@ bool run_one(const std::string& s) {
 int main(int argc, char** argv) {
   double seconds = 10.0;
   long runs = 100000;
-  unsigned long seed = 1;
+  unsigned long seed = 0;
+  bool seeded = false;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--seconds" && i + 1 < argc) seconds = std::atof(argv[++i]);
     else if (a == "--runs" && i + 1 < argc) runs = std::atol(argv[++i]);
-    else if (a == "--seed" && i + 1 < argc) seed = std::strtoul(argv[++i], nullptr, 10);
+    else if (a == "--seed" && i + 1 < argc) seed = std::strtoul(argv[++i], nullptr, 10), seeded = true;
     else if (a.rfind("-", 0) == 0) { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
     else files.push_back(a);
   }
+  if (!seeded) seed = std::random_device{}() ^ static_cast<unsigned long>(std::chrono::steady_clock::now().time_since_epoch().count());
+  std::printf("fuzz: mutation seed %lu (repeat with --seed %lu)\n", seed, seed);
+  std::fflush(stdout);
   std::vector<std::string> seeds = MimicFuzzSeeds();
   for (const std::string& f : files) {
     std::ifstream in(f, std::ios::binary);

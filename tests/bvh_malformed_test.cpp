@@ -129,6 +129,8 @@ std::vector<MalformedCase> cases() {
       {"truncated in the middle of a frame", cut_before(b, " 0 0 15 25"), 25, "frame 1 has 4 values, expected 10"},
       {"root position of 1e308 (finite, and written out as such before)", replace_once(b, "1 90 0 5", "1e308 90 0 5"), 25,
        "frame 1: root position is beyond 1e4 m of the origin (a unit or file error)"},
+      {"an angle of -1e308 degrees (infinite in radians; found by the fuzzer)", replace_once(b, "1 90 0 5 0 0", "1 90 0 5 0 -1e308"), 25,
+       "frame 1: joint 'Hips' turns -"},
       {"non-root joint translates over time",
        replace_once(replace_once(replace_once(b, "CHANNELS 1 Xrotation", "CHANNELS 2 Yposition Xrotation"),
                                  "10 20 30 40", "10 20 30 8 40"),

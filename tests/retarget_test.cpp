@@ -84,6 +84,19 @@ TEST(Retarget, MapErrorsNameTheFileAndTheProblem) {
   } catch (const ParseError& e) {
     EXPECT_EQ(e.line(), 3);
   }
+  // Found by the fuzzer (fuzz_retarget_map): a map without 'joints', a site without a name and a
+  // key that is a list each crashed on yaml-cpp's invalid node instead of saying what is missing.
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {"scale: 0.5\n", "m.yaml:1: 'joints' must map target joint names to source joint names"},
+           {"joints: {root: Hips}\nsites:\n  - {joint: root, offset: [0, 0, 1]}\n", "m.yaml:3: a site needs name, joint and offset: [x, y, z]"},
+           {"[joints]: 1\n", "m.yaml:1: a key must be a name"}}) {
+    try {
+      parse_retarget_map(text, "m.yaml");
+      FAIL() << text;
+    } catch (const ParseError& e) {
+      EXPECT_STREQ(e.what(), message.c_str());
+    }
+  }
   std::filesystem::path ch, walk_path;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", walk_path);

@@ -263,6 +263,8 @@ bool is_exported_checkpoint(const std::filesystem::path& path) {
     throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
   } catch (const Error& e) {
     throw Error(path.string() + ": " + e.what());
+  } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+    throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
   }
 }
 
@@ -276,6 +278,8 @@ int checkpoint_iteration(const std::filesystem::path& path) {
     throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
   } catch (const Error& e) {
     throw Error(path.string() + ": " + e.what());
+  } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+    throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
   }
 }
 
@@ -326,6 +330,8 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
     throw Error(where + ": " + e.what());
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
+  } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+    throw Error(where + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
   }
   // Fresh episodes from the restored generators, exactly as the saving run continued.
   t.collector->reset_all();
@@ -400,6 +406,8 @@ int read_weights(Trainer::Impl& t, const std::filesystem::path& path) {
     throw Error(where + ": " + e.what());
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
+  } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+    throw Error(where + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
   }
   return sources_loaded;
 }
@@ -436,6 +444,8 @@ int read_context_discriminators(Trainer::Impl& t, const std::vector<std::filesys
         throw Error(where + ": cannot start context " + std::to_string(k) + "'s discriminator from it (" + std::string(e.what_without_backtrace()) + ")");
       } catch (const Error& e) {
         throw Error(where + ": " + e.what());
+      } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+        throw Error(where + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
       }
     }
     ++sources;
@@ -487,6 +497,8 @@ double average_policy(Trainer::Impl& t, const std::vector<std::filesystem::path>
       throw Error(where + ": cannot average its policy (" + std::string(e.what_without_backtrace()) + ")");
     } catch (const Error& e) {
       throw Error(where + ": " + e.what());
+    } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+      throw Error(where + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
     }
   }
   const double n = static_cast<double>(checkpoints.size() + 1);
@@ -519,6 +531,8 @@ void read_policy(Trainer::Impl& t, const std::filesystem::path& path) {
     throw Error(where + ": cannot take its policy (" + std::string(e.what_without_backtrace()) + ")");
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
+  } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
+    throw Error(where + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
   }
 }
 

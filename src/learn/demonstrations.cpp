@@ -94,9 +94,9 @@ std::vector<ObservationSlice> parse_layout(const std::string& line, const std::s
 
 }  // namespace
 
-Demonstrations read_demonstrations(const std::filesystem::path& path) {
-  const std::string where = path.string();
-  std::string text = read_text_file(path);
+Demonstrations read_demonstrations(const std::filesystem::path& path) { return parse_demonstrations(read_text_file(path), path.string()); }
+
+Demonstrations parse_demonstrations(std::string text, const std::string& where) {
   std::vector<ObservationSlice> layout;
   int first_line = 1;
   if (text.rfind(kLayoutPrefix, 0) == 0) {

@@ -32,6 +32,8 @@ struct Demonstrations {
 // Errors (ParseError) name the file, the line and the problem: a missing column group, sizes
 // that disagree, a cell that is not a finite number, no samples, a layout outside the observation.
 Demonstrations read_demonstrations(const std::filesystem::path& path);
+// The same from a file's text; `where` names it in errors.
+Demonstrations parse_demonstrations(std::string text, const std::string& where);
 void write_demonstrations(const std::filesystem::path& path, const Demonstrations& d);  // atomic
 
 }  // namespace mimic

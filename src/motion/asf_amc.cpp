@@ -503,6 +503,8 @@ class AmcParser {
       if (is_translation_dof(dofs[k])) {
         pos[dofs[k][1] - 'x'] = v;
       } else if (axes.size() < 3) {
+        if (std::abs(v * ang_) > kMaxAngleDegrees * kPi / 180.0)
+          r_.sc.fail_at(line, where() + ": angle '" + printable_token(t) + "' turns beyond 1e6 degrees (a unit or file error)");
         angles[axes.size()] = v * ang_;
         axes += dofs[k][1];
       }

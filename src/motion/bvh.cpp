@@ -160,8 +160,13 @@ class BvhParser {
       for (std::size_t j = 0; j < nj; ++j) {
         const JointChannels& jc = chans_[j];
         double angles[3] = {0, 0, 0};
-        for (std::size_t k = 0; k < jc.rot_order.size(); ++k)
-          angles[k] = deg_to_rad(row[static_cast<std::size_t>(jc.rot_index[k])]);
+        for (std::size_t k = 0; k < jc.rot_order.size(); ++k) {
+          const double degrees = row[static_cast<std::size_t>(jc.rot_index[k])];
+          if (std::abs(degrees) > kMaxAngleDegrees)
+            sc_.fail_at(line, "frame " + std::to_string(f) + ": joint '" + clip_.skeleton.joints[j].name + "' turns " + std::to_string(degrees) +
+                                  " degrees, beyond 1e6 (a unit or file error)");
+          angles[k] = deg_to_rad(degrees);
+        }
         const Quat q_src = euler_intrinsic(jc.rot_order, angles);
         const Quat q = canonical((basis_ * q_src * basis_inv).normalized());
         Vec3 pos_src = Vec3::Zero();

@@ -29,6 +29,9 @@ constexpr long kMaxClipRotations = 1L << 25;
 // in metres: 10 km is beyond any capture volume, and larger values are a unit or file error
 // (1e308 would overflow in the simulator). Importers refuse them, naming the line.
 constexpr double kMaxCoordinate = 1e4;
+// No rotation channel turns further than this, in degrees (unwrapped angles of long captures stay
+// far below; 1e308 degrees overflows to infinity in radians). Importers refuse larger ones.
+constexpr double kMaxAngleDegrees = 1e6;
 // Whether every coordinate of `v` is finite and within kMaxCoordinate.
 inline bool plausible_position(const Vec3& v) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
 const char* to_string(LoopMode m);

@@ -236,6 +236,8 @@ Clip parse_clip(std::string_view text, const std::string& source) {
     };
     int idx = 0;
     for (int k = 0; k < 3; ++k) p.root_pos[k] = value(idx++);
+    if (!plausible_position(p.root_pos))
+      sc.fail_at(line, "frame " + std::to_string(f) + ": root position is beyond 1e4 m of the origin (a unit or file error)");
     for (std::size_t j = 0; j < nj; ++j) {
       for (double& x : v) x = value(idx++);
       Quat q(v[0], v[1], v[2], v[3]);

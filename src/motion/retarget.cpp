@@ -11,7 +11,14 @@
 
 namespace mimic {
 
-RetargetMap parse_retarget_map(std::string_view text, const std::string& source) {
+namespace {
+
+// A node yaml-cpp can answer about: a missing key of a const mapping is an invalid node, whose
+// type queries throw.
+bool has(const YAML::Node& n) { return n.IsDefined(); }
+bool scalar(const YAML::Node& n) { return n.IsDefined() && n.IsScalar(); }
+
+RetargetMap parse_map(std::string_view text, const std::string& source) {
   RetargetMap map;
   map.source = source;
   const YamlReader yr(source);
@@ -19,33 +26,36 @@ RetargetMap parse_retarget_map(std::string_view text, const std::string& source)
   auto fail = [&](const YAML::Node& n, const std::string& msg) { yr.fail(n, msg); };
   if (!root.IsMap()) fail(root, "expected a mapping with 'joints'");
   for (const auto& kv : root) {
-    const std::string key = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) fail(kv.first, "a key must be a name");
+    const std::string key = kv.first.Scalar();
     if (key != "joints" && key != "scale" && key != "sites" && key != "end_effectors" && key != "ground_fix")
       fail(kv.first, "unknown key '" + key + "' (joints, scale, sites, end_effectors, ground_fix)");
   }
   const YAML::Node joints = root["joints"];
-  if (!joints.IsMap() || joints.size() == 0) fail(joints.IsDefined() ? joints : root, "'joints' must map target joint names to source joint names");
+  if (!has(joints) || !joints.IsMap() || joints.size() == 0) fail(has(joints) ? joints : root, "'joints' must map target joint names to source joint names");
   for (const auto& kv : joints) {
+    if (!kv.first.IsScalar()) fail(kv.first, "joints: a target joint must be a name");
     if (!kv.second.IsScalar()) fail(kv.second, "joints: the source of '" + kv.first.Scalar() + "' must be a joint name");
     map.joints.emplace_back(kv.first.Scalar(), kv.second.Scalar());
   }
   if (const YAML::Node s = root["scale"]; s.IsDefined()) {
     if (s.IsScalar() && s.Scalar() == "auto") {
       map.scale = 0.0;
-    } else if (!s.IsScalar() || !parse_double(s.Scalar(), map.scale) || !(map.scale > 0)) {
-      fail(s, "'scale' must be a positive number or auto");
+    } else if (!s.IsScalar() || !parse_double(s.Scalar(), map.scale) || !(map.scale > 0) || map.scale > 1000) {
+      fail(s, "'scale' must be a positive number (at most 1000) or auto");
     }
   }
   if (const YAML::Node sites = root["sites"]; sites.IsDefined()) {
     if (!sites.IsSequence()) fail(sites, "'sites' must be a list");
     for (const YAML::Node& s : sites) {
       RetargetSite site;
-      if (!s.IsMap() || !s["name"].IsScalar() || !s["joint"].IsScalar() || !s["offset"].IsSequence() || s["offset"].size() != 3)
+      if (!s.IsMap() || !scalar(s["name"]) || !scalar(s["joint"]) || !has(s["offset"]) || !s["offset"].IsSequence() || s["offset"].size() != 3)
         fail(s, "a site needs name, joint and offset: [x, y, z]");
       site.name = s["name"].Scalar();
       site.joint = s["joint"].Scalar();
       for (std::size_t k = 0; k < 3; ++k)
-        if (!parse_double(s["offset"][k].Scalar(), site.offset[static_cast<Eigen::Index>(k)])) fail(s["offset"], "site offset must be 3 numbers");
+        if (!scalar(s["offset"][k]) || !parse_double(s["offset"][k].Scalar(), site.offset[static_cast<Eigen::Index>(k)]))
+          fail(s["offset"], "site offset must be 3 numbers");
       map.sites.push_back(site);
     }
   }
@@ -61,6 +71,16 @@ RetargetMap parse_retarget_map(std::string_view text, const std::string& source)
     map.ground_fix = g.Scalar() == "true";
   }
   return map;
+}
+
+}  // namespace
+
+RetargetMap parse_retarget_map(std::string_view text, const std::string& source) {
+  try {
+    return parse_map(text, source);
+  } catch (const YAML::Exception& e) {  // what the checks above did not foresee: still named
+    throw ParseError(source, e.mark.line + 1, "not a retarget map (" + e.msg + ")");
+  }
 }
 
 RetargetMap load_retarget_map(const std::filesystem::path& path) {
@@ -199,6 +219,12 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
       }
     }
     for (EffectorError& e : report->effectors) e.mean /= static_cast<double>(std::max<std::size_t>(1, src.frames.size()));
+  }
+  // A scale or a site far out of proportion gives positions no capture has (found by the fuzzer).
+  try {
+    out.validate();
+  } catch (const Error& e) {
+    throw Error(map.source + ": the retargeted clip is not a valid motion (" + std::string(e.what()) + "); check 'scale' and the sites");
   }
   return out;
 }

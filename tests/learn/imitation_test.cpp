@@ -249,6 +249,32 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
   EXPECT_GT(reward_late, reward_early + 0.05);
 }
 
+// Seed 004's ensemble (hinge heads over shared layers, a gradient penalty on interpolates, reward
+// the mean of the clipped heads), the humanoid's method, learnt end to end on the point mass: the
+// policy, which never sees the task, comes to hold the expert's orbit from the ensemble alone.
+TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheEnsembleAlone) {
+  const auto dir = test::temp_dir("ensemble_oscillator");
+  write_demonstrations(dir / "expert.csv", oscillator_expert(20));
+  const int iterations = 60;
+  std::string text = gail_config(dir / "expert.csv", iterations, ", heads: 8, epochs: 5, lr: 3.0e-3, batch: 128, replay: 4096") +
+                     "optimizer: {policy_lr: 5.0e-5}\n";
+  text.replace(text.find("source: gail"), 12, "source: iccgan");
+  Trainer t(parse_train_config(text, "osc.yaml"), oscillator_options());
+  std::vector<IterationMetrics> m;
+  for (int i = 0; i < iterations; ++i) m.push_back(t.iterate());
+  auto mean = [&](const char* name, int from, int to) {
+    double s = 0;
+    for (int i = from; i < to; ++i) s += m[static_cast<std::size_t>(i)].get(name);
+    return s / (to - from);
+  };
+  const double error_early = -mean("return", 0, 3), error_late = -mean("return", iterations - 15, iterations);
+  const double reward_early = mean("iccgan_reward", 4, 10), reward_late = mean("iccgan_reward", iterations - 15, iterations);
+  std::cout << "[ figures  ] imitation error " << error_early << " -> " << error_late << "; ensemble reward " << reward_early << " -> "
+            << reward_late << "; heads' penalty at the end " << mean("iccgan_penalty", iterations - 15, iterations) << "\n";
+  EXPECT_LT(error_late, 0.1 * error_early);
+  EXPECT_GT(reward_late, reward_early + 0.05);
+}
+
 TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
