@@ -78,9 +78,14 @@ TEST(AdversarialConfig, MismatchedPairsEachFileWithTheOtherContexts) {
     EXPECT_FLOAT_EQ(m[small.size()][2].item<float>(), 1.0f);  // the large orbit under context 0
     EXPECT_FLOAT_EQ(m[small.size()][3].item<float>(), 0.0f);
     EXPECT_EQ(source->discriminator().expert().size(0), 2 * small.size());
-    const IterationMetrics it = t.iterate();
-    EXPECT_GE(it.get("gail_mismatched_accuracy"), 0.0);
-    EXPECT_LE(it.get("gail_mismatched_accuracy"), 1.0);
+    // The discriminator learns to call an expert's states under the other behaviour's one-hot the
+    // policy's: it catches more of the mismatched samples as it trains.
+    std::vector<double> caught;
+    for (int i = 0; i < 30; ++i) caught.push_back(t.iterate().get("gail_mismatched_accuracy"));
+    std::cout << "[ figures  ] mismatched samples caught: " << caught.front() << " at iteration 1, " << caught.back() << " at 30\n";
+    // Measured: 0.33 -> 0.55 (seeded, so these figures are fixed).
+    EXPECT_GT(caught.back(), 0.5);
+    EXPECT_GT(caught.back(), caught.front() + 0.15);
   }
   {  // one per context: the other file, without a one-hot
     Trainer t(parse_train_config("collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, per_context: true, mismatched: 1, " +
