@@ -251,14 +251,13 @@ void read_widened_normalizer(InputArchive& a, const std::string& key, RunningNor
               tensor_vec(widen_columns(get(sub, "m2"), kept, n.size(), count * variance)));
 }
 
-}  // namespace
-
-bool is_exported_checkpoint(const std::filesystem::path& path) {
+// `read(archive)` on the opened checkpoint at `path`, every failure an Error naming the file.
+template <class F>
+auto read_archive(const std::filesystem::path& path, F&& read) {
   try {
     InputArchive a;
     open_archive(path, a);
-    torch::Tensor flag;
-    return a.try_read("acting_only", flag);
+    return read(a);
   } catch (const c10::Error& e) {
     throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
   } catch (const Error& e) {
@@ -268,19 +267,20 @@ bool is_exported_checkpoint(const std::filesystem::path& path) {
   }
 }
 
+}  // namespace
+
+bool is_exported_checkpoint(const std::filesystem::path& path) {
+  return read_archive(path, [](InputArchive& a) {
+    torch::Tensor flag;
+    return a.try_read("acting_only", flag);
+  });
+}
+
 int checkpoint_iteration(const std::filesystem::path& path) {
-  try {
-    InputArchive a;
-    open_archive(path, a);
+  return read_archive(path, [](InputArchive& a) {
     check_format(a);
     return static_cast<int>(get(a, "iteration").item<std::int64_t>());
-  } catch (const c10::Error& e) {
-    throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what_without_backtrace()) + ")");
-  } catch (const Error& e) {
-    throw Error(path.string() + ": " + e.what());
-  } catch (const std::exception& e) {  // LibTorch's TorchScript reader throws kinds of its own
-    throw Error(path.string() + ": not a readable mimic checkpoint (" + std::string(e.what()) + ")");
-  }
+  });
 }
 
 void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {

@@ -219,6 +219,23 @@ TEST(Record, KeepsEveryNthStepOfEachEpisodeFromThePolicy) {
     EXPECT_NEAR(d.next_obs(i, 0), d.obs(i, 0) + d.next_obs(i, 1) * test::OscillatorEnv::kDt, 1e-9);
 }
 
+namespace {
+
+// A run's metrics over `iterations` iterations, and the mean of one over iterations [from, to).
+struct LearningCurve {
+  std::vector<IterationMetrics> m;
+  LearningCurve(Trainer& t, int iterations) {
+    for (int i = 0; i < iterations; ++i) m.push_back(t.iterate());
+  }
+  double mean(const char* name, int from, int to) const {
+    double s = 0;
+    for (int i = from; i < to; ++i) s += m[static_cast<std::size_t>(i)].get(name);
+    return s / (to - from);
+  }
+};
+
+}  // namespace
+
 TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) {
   const auto dir = test::temp_dir("gail_oscillator");
   write_demonstrations(dir / "expert.csv", oscillator_expert(20));
@@ -229,13 +246,8 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
                                    "optimizer: {policy_lr: 5.0e-5}\n",
                                "osc.yaml"),
             oscillator_options());
-  std::vector<IterationMetrics> m;
-  for (int i = 0; i < iterations; ++i) m.push_back(t.iterate());
-  auto mean = [&](const char* name, int from, int to) {
-    double s = 0;
-    for (int i = from; i < to; ++i) s += m[static_cast<std::size_t>(i)].get(name);
-    return s / (to - from);
-  };
+  const LearningCurve curve(t, iterations);
+  auto mean = [&](const char* name, int from, int to) { return curve.mean(name, from, to); };
   // The task reward the policy never sees: minus the squared distance of (x, v) from the circle.
   const double error_early = -mean("return", 0, 3), error_late = -mean("return", iterations - 15, iterations);
   // Iterations 5-10: the discriminator has learnt; the policy has barely moved.
@@ -260,13 +272,8 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheEnsembleAlone) {
                      "optimizer: {policy_lr: 5.0e-5}\n";
   text.replace(text.find("source: gail"), 12, "source: iccgan");
   Trainer t(parse_train_config(text, "osc.yaml"), oscillator_options());
-  std::vector<IterationMetrics> m;
-  for (int i = 0; i < iterations; ++i) m.push_back(t.iterate());
-  auto mean = [&](const char* name, int from, int to) {
-    double s = 0;
-    for (int i = from; i < to; ++i) s += m[static_cast<std::size_t>(i)].get(name);
-    return s / (to - from);
-  };
+  const LearningCurve curve(t, iterations);
+  auto mean = [&](const char* name, int from, int to) { return curve.mean(name, from, to); };
   const double error_early = -mean("return", 0, 3), error_late = -mean("return", iterations - 15, iterations);
   const double reward_early = mean("iccgan_reward", 4, 10), reward_late = mean("iccgan_reward", iterations - 15, iterations);
   std::cout << "[ figures  ] imitation error " << error_early << " -> " << error_late << "; ensemble reward " << reward_early << " -> "
