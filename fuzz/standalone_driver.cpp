@@ -5,7 +5,11 @@
 //   usage: fuzz_x [--seconds S] [--runs N] [--seed K] [FILE...]   (FILEs: extra seeds / repro)
 // Without --seed each run draws its own and prints it first, so that a run that finds a crash is
 // repeated exactly by passing that seed.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -91,12 +95,43 @@ std::string mutate(std::string s, const std::vector<std::string>& seeds, std::mt
   return s;
 }
 
+// The input being run, written to fuzz-failure.bin in the working directory when the run dies (an
+// uncaught exception ends in abort; a sanitizer report ends in its death callback), so that the
+// crash can be replayed as `fuzz_x fuzz-failure.bin` without re-running the mutations.
+const std::string* g_current = nullptr;
+
+void save_current_input() {
+  if (g_current == nullptr) return;
+  const int fd = ::open("fuzz-failure.bin", O_WRONLY | O_CREAT | O_TRUNC, 0644);  // async-signal-safe
+  if (fd < 0) return;
+  std::size_t done = 0;
+  while (done < g_current->size()) {
+    const ssize_t n = ::write(fd, g_current->data() + done, g_current->size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  static const char kSaved[] = "fuzz: the failing input is in fuzz-failure.bin (replay: fuzz_x fuzz-failure.bin)\n";
+  (void)!::write(2, kSaved, sizeof kSaved - 1);
+  g_current = nullptr;
+}
+
+extern "C" void on_fatal_signal(int sig) {
+  save_current_input();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
 bool run_one(const std::string& s) {
+  g_current = &s;
   LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(s.data()), s.size());
+  g_current = nullptr;
   return true;
 }
 
 }  // namespace
+
+extern "C" void __sanitizer_set_death_callback(void (*)(void)) __attribute__((weak));
 
 int main(int argc, char** argv) {
   double seconds = 10.0;
@@ -115,6 +150,8 @@ int main(int argc, char** argv) {
   if (!seeded) seed = std::random_device{}() ^ static_cast<unsigned long>(std::chrono::steady_clock::now().time_since_epoch().count());
   std::printf("fuzz: mutation seed %lu (repeat with --seed %lu)\n", seed, seed);
   std::fflush(stdout);
+  for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, on_fatal_signal);
+  if (__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(save_current_input);
   std::vector<std::string> seeds = MimicFuzzSeeds();
   for (const std::string& f : files) {
     std::ifstream in(f, std::ios::binary);

@@ -98,12 +98,17 @@ TEST(FileLimits, JsonAndYamlAboveSixteenMiBAreRefusedBeforeParsing) {
   EXPECT_TRUE(contains(what, "big.txt: more than 16 MiB, the most this reader takes (YAML and JSON")) << what;
 }
 
-TEST(YamlKeys, AKeyGivenTwiceInOneMappingIsAnErrorNamingBothLines) {
+TEST(YamlKeys, AKeyGivenTwiceOrAKeyThatIsNotANameIsAnErrorNamingTheLine) {
   const YamlReader r("run.yaml");
   EXPECT_TRUE(contains(error_of([&] { r.parse("seed: 2\nseed: 3\n", "bad"); }), "run.yaml:2: key 'seed' is given twice (first on line 1)"));
   EXPECT_TRUE(contains(error_of([&] { r.parse("ppo:\n  clip: 0.2\n  epochs: 3\n  clip: 0.1\n", "bad"); }),
                        "run.yaml:4: key 'clip' is given twice (first on line 2)"));
   EXPECT_TRUE(contains(error_of([&] { r.parse("rewards:\n  - {source: gail, weight: 1, weight: 2}\n", "bad"); }), "key 'weight' is given twice"));
+  // A key that is not a name (yaml-cpp would throw its own exception at the first lookup).
+  EXPECT_TRUE(contains(error_of([&] { r.parse("env: {name: tracking, [512, 256], clip: x.txt}\n", "bad"); }),
+                       "run.yaml:1: a key that is a list, where keys are names"));
+  EXPECT_TRUE(contains(error_of([&] { r.parse("ppo:\n  ? {a: 1}\n  : 2\n", "bad"); }), "run.yaml:2: a key that is a mapping"));
+  EXPECT_TRUE(contains(error_of([&] { r.parse("seed: 1\n: 2\n", "bad"); }), "run.yaml:2: a key that is empty"));
   // The same key in two mappings is fine.
   EXPECT_NO_THROW(r.parse("policy: {hidden: [8]}\nvalue: {hidden: [8]}\n", "bad"));
 }

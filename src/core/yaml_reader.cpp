@@ -17,22 +17,23 @@ std::string printable_message(std::string m) {
 }
 }  // namespace
 
-void reject_duplicate_keys(const YAML::Node& node, const std::string& source) {
+void check_mapping_keys(const YAML::Node& node, const std::string& source) {
   if (node.IsSequence()) {
-    for (const YAML::Node& item : node) reject_duplicate_keys(item, source);
+    for (const YAML::Node& item : node) check_mapping_keys(item, source);
     return;
   }
   if (!node.IsMap()) return;
   std::map<std::string, int> seen;  // key -> line
   for (const auto& pair : node) {
-    if (pair.first.IsScalar()) {
-      const int line = pair.first.Mark().line + 1;
-      const auto [at, fresh] = seen.emplace(pair.first.Scalar(), line);
-      if (!fresh)
-        throw ParseError(source, line, "key '" + printable_message(pair.first.Scalar()) + "' is given twice (first on line " +
-                                           std::to_string(at->second) + "); only one of the values could be used");
-    }
-    reject_duplicate_keys(pair.second, source);
+    const int line = pair.first.Mark().line + 1;
+    if (!pair.first.IsScalar())
+      throw ParseError(source, line, std::string("a key that is ") + (pair.first.IsNull() ? "empty" : pair.first.IsMap() ? "a mapping" : "a list") +
+                                         ", where keys are names");
+    const auto [at, fresh] = seen.emplace(pair.first.Scalar(), line);
+    if (!fresh)
+      throw ParseError(source, line, "key '" + printable_message(pair.first.Scalar()) + "' is given twice (first on line " +
+                                         std::to_string(at->second) + "); only one of the values could be used");
+    check_mapping_keys(pair.second, source);
   }
 }
 
@@ -44,7 +45,7 @@ YAML::Node YamlReader::parse(std::string_view text, const std::string& invalid) 
   } catch (const YAML::Exception& e) {
     throw ParseError(source_, e.mark.line + 1, invalid + ": " + printable_message(e.msg));
   }
-  reject_duplicate_keys(root, source_);
+  check_mapping_keys(root, source_);
   return root;
 }
 

@@ -10,8 +10,9 @@
 namespace mimic {
 
 // ParseError at the second of two equal keys in one mapping, anywhere under `node` (yaml-cpp
-// keeps both and answers the first: `seed: 2` then `seed: 3` would silently train seed 2).
-void reject_duplicate_keys(const YAML::Node& node, const std::string& source);
+// keeps both and answers the first: `seed: 2` then `seed: 3` would silently train seed 2), and at
+// a key that is not a name (`{[512, 256], clip: x}`: a list or mapping as a key, or an empty one).
+void check_mapping_keys(const YAML::Node& node, const std::string& source);
 
 class YamlReader {
  public:

@@ -203,7 +203,7 @@ std::string override_config(const std::string& text, const std::string& source, 
     YAML::Node value;
     try {
       value = YAML::Load(setting.substr(eq + 1));
-      reject_duplicate_keys(value, "--set '" + setting + "'");
+      check_mapping_keys(value, "--set '" + setting + "'");
     } catch (const YAML::Exception& e) {
       throw Error("--set '" + setting + "': the value is not valid YAML (" + e.msg + ")");
     }
