@@ -11,7 +11,9 @@
 #include "app/commands.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "learn/runtime_format.hpp"
 #include "learn/train_bench.hpp"
+#include "learn/runtime_format.hpp"
 #include "learn/trainer.hpp"
 
 namespace mimic::app {
@@ -128,6 +130,7 @@ void add_train_commands(CLI::App& app) {
     std::vector<std::filesystem::path> average_with;
     int average_last = 0;
     std::filesystem::path policy_from;
+    bool networks_only = false;
   };
   auto exp = std::make_shared<ExportArgs>();
   CLI::App* export_cmd = app.add_subcommand(
@@ -148,7 +151,21 @@ void add_train_commands(CLI::App& app) {
       ->check(CLI::ExistingPath)
       ->excludes("--average-with")
       ->excludes("--average-last");
+  export_cmd->add_flag("--networks-only", exp->networks_only,
+                       "write only OUT/networks.mimic, the torch-free runtime's networks (docs/runtime.md), e.g. into an existing "
+                       "model directory (OUT may be RUN)")
+      ->excludes("--average-with")
+      ->excludes("--average-last")
+      ->excludes("--policy-from");
   export_cmd->callback([exp] {
+    if (exp->networks_only) {
+      const std::unique_ptr<Trainer> trainer = Trainer::load_policy(exp->run);
+      std::filesystem::create_directories(exp->out);
+      trainer->write_runtime_networks(exp->out / kRuntimeFileName);
+      spdlog::info("wrote {} ({:.2f} MB), iteration {}", (exp->out / kRuntimeFileName).string(),
+                   static_cast<double>(std::filesystem::file_size(exp->out / kRuntimeFileName)) / 1e6, trainer->iteration());
+      return;
+    }
     if (std::filesystem::exists(exp->out / "checkpoint.pt"))
       throw Error(exp->out.string() + " already holds a checkpoint.pt: choose another directory or remove it");
     // With its reward sources, so that the discriminators' scores stay available to the model.

@@ -17,6 +17,7 @@
 #include "learn/advantage.hpp"
 #include "learn/adversarial_reward.hpp"
 #include "learn/per_context_reward.hpp"
+#include "learn/runtime_export.hpp"
 #include "learn/trainer_impl.hpp"
 
 namespace mimic {
@@ -416,7 +417,10 @@ void Trainer::export_model(const std::filesystem::path& path) {
   for (auto& source : impl_->rewards) source.second->drop_training_state();
   impl_->acting_only = true;
   write_file_atomic(path, serialize_checkpoint(*impl_));
+  write_runtime_networks(path.parent_path() / kRuntimeFileName);
 }
+
+void Trainer::write_runtime_networks(const std::filesystem::path& path) const { write_runtime_file(*impl_, path); }
 
 std::filesystem::path Trainer::snapshot_path(const std::filesystem::path& run, int iteration) {
   return run / "snapshots" / fmt::format("{:06d}.pt", iteration);

@@ -90,7 +90,11 @@ class Trainer {
   // optimisers' moments and the discriminators' replay pools — a few MB where a run's checkpoint
   // takes tens. It loads for eval, render, record and embedding; resuming it is refused, since
   // training would go on from fresh moments and an empty pool. This trainer drops them too.
+  // Beside it, the torch-free runtime's networks.mimic (write_runtime_networks).
   void export_model(const std::filesystem::path& path);
+  // The policy, value network and observation normaliser in the runtime's own format
+  // (learn/runtime_export.hpp, docs/runtime.md), atomically.
+  void write_runtime_networks(const std::filesystem::path& path) const;
   // Averages the policy's weights with those of other checkpoints of the same config (run
   // directories or checkpoint files; stochastic weight averaging over a run's last checkpoints).
   // Returns the largest gap between their observation normalisers' means and this one's, in this

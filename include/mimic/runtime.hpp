@@ -1,0 +1,107 @@
+#pragma once
+// mimic's runtime: load a trained skill and step a simulated character with it, without LibTorch.
+// The whole public surface for a game, a robot stack or a tool (docs/runtime.md). Depends on the
+// C++20 standard library and Eigen only; links MuJoCo (find_package(mimic) gives mimic::runtime).
+//
+//   auto walk = mimic::Skill::load("models/humanoid_walk_iccgan");
+//   mimic::Controller controller({walk});
+//   for (int i = 0; i < 300; ++i) controller.step();      // 10 s at 30 Hz
+//   Eigen::Vector3d root = controller.root_position();
+//
+// Model vs state, as MuJoCo's mjModel and mjData: a Skill is constant once loaded and may be
+// shared by any number of controllers and threads; a Controller is the changing state of one
+// character and belongs to one thread at a time.
+#include <Eigen/Core>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+struct mjModel_;
+struct mjData_;
+
+namespace mimic {
+
+// A trained skill: its networks (networks.mimic, written by `mimic export`) and the environment it
+// was trained in (config.yaml's `env`: the character, its observations and its action mapping).
+class Skill {
+ public:
+  // A model directory (mimic export). `name` defaults to the directory's name. Throws
+  // std::runtime_error (mimic::Error) naming the file and the problem: a missing file, a damaged
+  // or truncated one (CRC-32), a newer format, a layer of the wrong shape, a weight that is not
+  // finite, networks whose sizes or character differ from the config's environment.
+  static std::shared_ptr<const Skill> load(const std::filesystem::path& model_dir, const std::string& name = "");
+  ~Skill();
+  Skill(const Skill&) = delete;
+  Skill& operator=(const Skill&) = delete;
+
+  const std::string& name() const;
+  const std::filesystem::path& directory() const;
+  int frame_size() const;   // one observation
+  int history() const;      // frames the policy sees, oldest first
+  int input_size() const;   // frame_size() * history()
+  int action_size() const;
+  long long policy_parameters() const;
+  // The policy's mean actions for raw policy inputs (rows; the observation normaliser is applied
+  // here), and the value network's estimates.
+  Eigen::MatrixXd act(const Eigen::MatrixXd& inputs) const;
+  Eigen::VectorXd act(const Eigen::VectorXd& input) const;
+  Eigen::VectorXd value(const Eigen::MatrixXd& inputs) const;
+  // The same in float32 row-major, without conversions (benchmarks, batched games). `inputs`
+  // is [batch, input_size()] row-major; returns [batch, action_size()] row-major.
+  std::vector<float> act_floats(const float* inputs, int batch) const;
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  explicit Skill(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// What a control step did.
+struct StepInfo {
+  bool episode_over = false;  // the skill's environment ended the episode (below: why)
+  bool fell = false;          // a fall or a drift from the reference: a failure
+  std::string ending;         // "fall", "time limit", "clip end", "drift"; empty while it goes on
+};
+
+// One character in one MuJoCo world, driven by one of a set of skills of that character.
+class Controller {
+ public:
+  // Skills of one character (the same MuJoCo bodies, the same action size); the first is active.
+  // `seed` draws the environments' starts. Throws mimic::Error naming the skill that differs.
+  explicit Controller(std::vector<std::shared_ptr<const Skill>> skills, std::uint64_t seed = 1);
+  ~Controller();
+  Controller(const Controller&) = delete;
+  Controller& operator=(const Controller&) = delete;
+
+  // A new episode of the active skill, from its environment's start distribution.
+  void reset();
+  // One control step: the active skill's policy mean, applied through its PD targets.
+  StepInfo step();
+  // Hands the character, in its current state (pose and velocities), to another skill. Throws
+  // mimic::Error naming the skills it knows when `skill` is not one of them.
+  void switch_to(const std::string& skill);
+
+  const std::string& skill() const;  // the active one's name
+  const std::vector<std::shared_ptr<const Skill>>& skills() const;
+  double control_dt() const;         // seconds per step()
+  double time() const;               // seconds since reset()
+  long long steps() const;           // since reset()
+  Eigen::Vector3d root_position() const;  // world frame, metres, z up
+  // The last policy input and action (raw, before normalisation / PD mapping).
+  const Eigen::VectorXd& last_input() const;
+  const Eigen::VectorXd& last_action() const;
+  // The MuJoCo model and state of the active skill's world, for a renderer (read only between steps).
+  const mjModel_* physics_model() const;
+  mjData_* physics_data() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mimic

@@ -1,0 +1,166 @@
+#include "control/network.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace mimic {
+
+namespace {
+
+std::string shape_text(const std::vector<std::uint32_t>& shape) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
+  return s + "]";
+}
+
+const char* kind_name(NamedArray::Kind k) {
+  return k == NamedArray::Kind::Text ? "text" : k == NamedArray::Kind::Float32 ? "float32" : "float64";
+}
+
+FloatMatrix matrix_of(const std::vector<float>& v, std::uint32_t rows, std::uint32_t cols) {
+  return Eigen::Map<const FloatMatrix>(v.data(), rows, cols);
+}
+
+Eigen::VectorXf vector_of(const std::vector<float>& v) { return Eigen::Map<const Eigen::VectorXf>(v.data(), static_cast<Eigen::Index>(v.size())); }
+
+}  // namespace
+
+ArrayTable::ArrayTable(std::vector<NamedArray> arrays, std::string source) : source_(std::move(source)) {
+  for (NamedArray& a : arrays) arrays_.emplace(a.name, std::move(a));
+}
+
+void ArrayTable::fail(const std::string& message) const { throw Error(source_ + ": " + message); }
+
+const NamedArray& ArrayTable::at(const std::string& name) const {
+  const auto it = arrays_.find(name);
+  if (it == arrays_.end()) fail("no array '" + name + "'");
+  return it->second;
+}
+
+std::string ArrayTable::text(const std::string& name) const {
+  const NamedArray& a = at(name);
+  if (a.kind != NamedArray::Kind::Text) fail("array '" + name + "' is " + kind_name(a.kind) + ", expected text");
+  return a.text;
+}
+
+double ArrayTable::scalar(const std::string& name) const {
+  const NamedArray& a = at(name);
+  if (a.kind != NamedArray::Kind::Float64 || !a.shape.empty()) fail("array '" + name + "' is not a float64 scalar");
+  if (!std::isfinite(a.f64[0])) fail("array '" + name + "' is not finite");
+  return a.f64[0];
+}
+
+int ArrayTable::count(const std::string& name, int lo, int hi) const {
+  const double v = scalar(name);
+  if (v != std::floor(v) || v < lo || v > hi)
+    fail("array '" + name + "' is " + std::to_string(v) + ", expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return static_cast<int>(v);
+}
+
+const std::vector<float>& ArrayTable::floats(const std::string& name, const std::vector<std::uint32_t>& shape) const {
+  const NamedArray& a = at(name);
+  if (a.kind != NamedArray::Kind::Float32) fail("array '" + name + "' is " + kind_name(a.kind) + ", expected float32");
+  if (a.shape != shape) fail("array '" + name + "' has shape " + shape_text(a.shape) + ", expected " + shape_text(shape));
+  for (std::size_t i = 0; i < a.f32.size(); ++i)
+    if (!std::isfinite(a.f32[i])) fail("array '" + name + "' holds a value that is not finite (" + std::to_string(a.f32[i]) + " at " + std::to_string(i) + ")");
+  return a.f32;
+}
+
+const std::vector<double>& ArrayTable::doubles(const std::string& name, const std::vector<std::uint32_t>& shape) const {
+  const NamedArray& a = at(name);
+  if (a.kind != NamedArray::Kind::Float64) fail("array '" + name + "' is " + kind_name(a.kind) + ", expected float64");
+  if (a.shape != shape) fail("array '" + name + "' has shape " + shape_text(a.shape) + ", expected " + shape_text(shape));
+  for (std::size_t i = 0; i < a.f64.size(); ++i)
+    if (!std::isfinite(a.f64[i])) fail("array '" + name + "' holds a value that is not finite (" + std::to_string(a.f64[i]) + " at " + std::to_string(i) + ")");
+  return a.f64;
+}
+
+Network Network::read(const ArrayTable& t, const std::string& prefix, int input_size, int history, Activation activation) {
+  Network n;
+  n.input_size_ = input_size, n.history_ = history, n.activation_ = activation;
+  if (history < 1 || input_size < 1 || input_size % history != 0)
+    t.fail(prefix + ": an input of " + std::to_string(input_size) + " values is not " + std::to_string(history) + " equal frames");
+  auto size_of = [&](const std::string& name, std::size_t dim) -> std::uint32_t {
+    const NamedArray& a = t.at(name);
+    if (a.shape.size() <= dim) t.fail("array '" + name + "' has rank " + std::to_string(a.shape.size()) + ", expected " + std::to_string(dim + 1) + " or more");
+    return a.shape[dim];
+  };
+  auto width = static_cast<std::uint32_t>(input_size);
+  if (history > 1) {
+    const std::string g = prefix + ".gru.";
+    const std::uint32_t frame = width / static_cast<std::uint32_t>(history);
+    const std::uint32_t gates = size_of(g + "weight_ih_l0", 0), hidden = gates / 3;
+    if (hidden == 0 || gates % 3 != 0) t.fail("array '" + g + "weight_ih_l0' has " + std::to_string(gates) + " rows, not 3 gates of a positive size");
+    Gru gru;
+    gru.weight_ih = matrix_of(t.floats(g + "weight_ih_l0", {gates, frame}), gates, frame);
+    gru.weight_hh = matrix_of(t.floats(g + "weight_hh_l0", {gates, hidden}), gates, hidden);
+    gru.bias_ih = vector_of(t.floats(g + "bias_ih_l0", {gates}));
+    gru.bias_hh = vector_of(t.floats(g + "bias_hh_l0", {gates}));
+    n.gru_ = std::move(gru);
+    width = hidden;
+  }
+  for (int k = 0;; ++k) {
+    const std::string w = prefix + ".layers." + std::to_string(k) + ".weight", b = prefix + ".layers." + std::to_string(k) + ".bias";
+    if (!t.has(w)) {
+      if (k == 0) t.fail("no array '" + w + "': the network has no layer");
+      break;
+    }
+    const std::uint32_t out = size_of(w, 0);
+    n.layers_.push_back({matrix_of(t.floats(w, {out, width}), out, width), vector_of(t.floats(b, {out}))});
+    width = out;
+  }
+  return n;
+}
+
+FloatMatrix Network::forward(const FloatMatrix& x) const {
+  if (x.cols() != input_size_)
+    throw Error("network input has " + std::to_string(x.cols()) + " values, expected " + std::to_string(input_size_));
+  FloatMatrix h;
+  if (gru_) {
+    // PyTorch's GRU (seed 004 section 5.1's encoder), from a zero state over the frames in order:
+    // r = s(W_ir x + b_ir + W_hr h + b_hr), z = s(... z ...), n = tanh(W_in x + b_in + r (W_hn h + b_hn)),
+    // h' = (1 - z) n + z h.
+    const Eigen::Index frame = input_size_ / history_, hidden = gru_->bias_hh.size() / 3;
+    h = FloatMatrix::Zero(x.rows(), hidden);
+    auto sigmoid = [](float v) { return 1.0f / (1.0f + std::exp(-v)); };
+    for (int f = 0; f < history_; ++f) {
+      FloatMatrix gi = x.middleCols(f * frame, frame) * gru_->weight_ih.transpose();
+      gi.rowwise() += gru_->bias_ih.transpose();
+      FloatMatrix gh = h * gru_->weight_hh.transpose();
+      gh.rowwise() += gru_->bias_hh.transpose();
+      for (Eigen::Index i = 0; i < x.rows(); ++i)
+        for (Eigen::Index j = 0; j < hidden; ++j) {
+          const float r = sigmoid(gi(i, j) + gh(i, j));
+          const float z = sigmoid(gi(i, hidden + j) + gh(i, hidden + j));
+          const float c = std::tanh(gi(i, 2 * hidden + j) + r * gh(i, 2 * hidden + j));
+          h(i, j) = (1.0f - z) * c + z * h(i, j);
+        }
+    }
+  }
+  const FloatMatrix& in = gru_ ? h : x;
+  FloatMatrix y;
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    const Linear& l = layers_[k];
+    if (in.rows() == 1) {  // one sample: a matrix-vector product over the weights' contiguous rows
+      y = (l.weight * (k == 0 ? in : y).transpose() + l.bias).transpose();
+    } else {
+      y = (k == 0 ? in : y) * l.weight.transpose();
+      y.rowwise() += l.bias.transpose();
+    }
+    if (k + 1 < layers_.size()) {
+      if (activation_ == Activation::Relu) y = y.cwiseMax(0.0f);
+      else y = y.array().tanh().matrix();
+    }
+  }
+  return y;
+}
+
+long long Network::parameters() const {
+  long long n = 0;
+  if (gru_) n += gru_->weight_ih.size() + gru_->weight_hh.size() + gru_->bias_ih.size() + gru_->bias_hh.size();
+  for (const Linear& l : layers_) n += l.weight.size() + l.bias.size();
+  return n;
+}
+
+}  // namespace mimic

@@ -1,0 +1,69 @@
+#pragma once
+// A policy or value network evaluated with Eigen, in float32, as learn/networks.hpp's FeatureNet
+// computes it with LibTorch: an optional GRU over the last `history` frames (its final hidden
+// state), then linear layers with ReLU or tanh between them. Immutable once loaded: one Network
+// may be shared by any number of threads.
+#include <Eigen/Core>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/array_file.hpp"
+
+namespace mimic {
+
+using FloatMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// A model file's arrays by name, with the checks every reader needs. Errors name `source`.
+class ArrayTable {
+ public:
+  ArrayTable(std::vector<NamedArray> arrays, std::string source);
+  bool has(const std::string& name) const { return arrays_.count(name) > 0; }
+  const std::string& source() const { return source_; }
+  std::string text(const std::string& name) const;
+  double scalar(const std::string& name) const;
+  int count(const std::string& name, int lo, int hi) const;  // an integer-valued scalar in [lo, hi]
+  // A float32 array of exactly this shape, every value finite.
+  const std::vector<float>& floats(const std::string& name, const std::vector<std::uint32_t>& shape) const;
+  const std::vector<double>& doubles(const std::string& name, const std::vector<std::uint32_t>& shape) const;
+  const NamedArray& at(const std::string& name) const;
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  std::map<std::string, NamedArray> arrays_;
+  std::string source_;
+};
+
+class Network {
+ public:
+  enum class Activation { Relu, Tanh };
+  // The arrays under `prefix` ("policy.net", "value.net"): optional "gru.weight_ih_l0",
+  // "gru.weight_hh_l0", "gru.bias_ih_l0", "gru.bias_hh_l0" (history > 1), then "layers.K.weight"
+  // [out, in] and "layers.K.bias" [out] for K = 0, 1, ... Error naming the file and the array
+  // where a shape does not chain from `input_size` or a value is not finite.
+  static Network read(const ArrayTable& arrays, const std::string& prefix, int input_size, int history, Activation activation);
+
+  int input_size() const { return input_size_; }
+  int output_size() const { return static_cast<int>(layers_.back().bias.size()); }
+  int history() const { return history_; }
+  // Outputs [batch, output_size] for inputs [batch, input_size] (frames oldest first).
+  FloatMatrix forward(const FloatMatrix& x) const;
+  long long parameters() const;
+
+ private:
+  struct Linear {
+    FloatMatrix weight;  // [out, in]
+    Eigen::VectorXf bias;
+  };
+  struct Gru {
+    FloatMatrix weight_ih, weight_hh;  // [3 hidden, frame], [3 hidden, hidden]; gates r, z, n
+    Eigen::VectorXf bias_ih, bias_hh;
+  };
+  int input_size_ = 0, history_ = 1;
+  Activation activation_ = Activation::Relu;
+  std::optional<Gru> gru_;
+  std::vector<Linear> layers_;
+};
+
+}  // namespace mimic

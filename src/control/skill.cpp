@@ -1,0 +1,175 @@
+#include <mujoco/mujoco.h>
+
+#include <sstream>
+
+#include "control/skill_impl.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/yaml_reader.hpp"
+
+namespace mimic {
+
+namespace {
+
+std::vector<ObservationSlice> parse_layout(const std::string& text, const ArrayTable& t) {
+  std::vector<ObservationSlice> layout;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    ObservationSlice s;
+    std::string rest;
+    if (!(fields >> s.name >> s.offset >> s.size) || (fields >> rest) || s.offset < 0 || s.size < 0)
+      t.fail("array 'observation.layout': line '" + line + "' is not 'NAME OFFSET SIZE'");
+    layout.push_back(s);
+  }
+  return layout;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) out.push_back(line);
+  return out;
+}
+
+std::string layout_text(const std::vector<ObservationSlice>& layout) {
+  std::string s;
+  for (const ObservationSlice& p : layout) s += (s.empty() ? "" : ", ") + p.name + " " + std::to_string(p.size);
+  return s.empty() ? "(none)" : s;
+}
+
+Network::Activation activation_of(const ArrayTable& t, const std::string& name) {
+  const std::string a = t.text(name);
+  if (a == "relu") return Network::Activation::Relu;
+  if (a == "tanh") return Network::Activation::Tanh;
+  t.fail("array '" + name + "' is '" + a + "', expected relu or tanh");
+}
+
+constexpr int kMaxSize = 1 << 20;
+
+}  // namespace
+
+std::unique_ptr<Skill::Impl> read_skill_networks(std::string_view bytes, const std::filesystem::path& networks) {
+  std::vector<NamedArray> arrays;
+  try {
+    arrays = decode_arrays(bytes);
+  } catch (const Error& e) {
+    throw Error(networks.string() + ": " + e.what());
+  }
+  const ArrayTable t(std::move(arrays), networks.string());
+  if (t.text("format") != kRuntimeFormat) t.fail("format '" + t.text("format") + "', expected '" + kRuntimeFormat + "'");
+  auto s = std::make_unique<Skill::Impl>();
+  s->frame_size = t.count("observation.frame_size", 1, kMaxSize);
+  s->history = t.count("observation.history", 1, 1024);
+  s->action_size = t.count("action_size", 1, kMaxSize);
+  if (static_cast<long long>(s->frame_size) * s->history > kMaxSize) t.fail("the policy's input (frame_size x history) is above 2^20 values");
+  const int input = s->frame_size * s->history;
+  s->layout = parse_layout(t.text("observation.layout"), t);
+  int covered = 0;
+  for (const ObservationSlice& p : s->layout) {
+    if (p.offset != covered) t.fail("array 'observation.layout': part '" + p.name + "' starts at " + std::to_string(p.offset) + ", not " + std::to_string(covered));
+    covered += p.size;
+  }
+  if (covered != s->frame_size)
+    t.fail("array 'observation.layout' covers " + std::to_string(covered) + " values of a frame of " + std::to_string(s->frame_size));
+  s->bodies = lines_of(t.text("character.bodies"));
+  const auto n = static_cast<std::uint32_t>(input);
+  const double count = t.scalar("observation.count");
+  if (count < 0) t.fail("array 'observation.count' is negative");
+  s->normalise = count > 0;
+  const std::vector<double>& mean = t.doubles("observation.mean", {n});
+  const std::vector<double>& variance = t.doubles("observation.variance", {n});
+  const double epsilon = t.scalar("observation.epsilon");
+  s->clip = t.scalar("observation.clip");
+  if (!(epsilon > 0) || s->clip < 0) t.fail("arrays 'observation.epsilon' and 'observation.clip' must be > 0 and >= 0");
+  s->mean = Eigen::Map<const Eigen::VectorXd>(mean.data(), input);
+  const Eigen::VectorXd var = Eigen::Map<const Eigen::VectorXd>(variance.data(), input);
+  if ((var.array() < 0).any()) t.fail("array 'observation.variance' holds a negative value");
+  s->inv_std = (var.array() + epsilon).rsqrt().matrix();  // as RunningNormalizer::normalize
+  s->iteration = t.scalar("iteration");
+  s->samples = t.scalar("samples");
+  s->policy = Network::read(t, "policy.net", input, s->history, activation_of(t, "policy.activation"));
+  if (s->policy.output_size() != s->action_size)
+    t.fail("the policy's last layer gives " + std::to_string(s->policy.output_size()) + " values for " + std::to_string(s->action_size) + " actions");
+  const std::vector<float>& log_std = t.floats("policy.log_std", {static_cast<std::uint32_t>(s->action_size)});
+  s->log_std = Eigen::Map<const Eigen::VectorXf>(log_std.data(), s->action_size);
+  s->value = Network::read(t, "value.net", input, s->history, activation_of(t, "value.activation"));
+  if (s->value.output_size() != 1) t.fail("the value network's last layer gives " + std::to_string(s->value.output_size()) + " values, not 1");
+  return s;
+}
+
+FloatMatrix Skill::Impl::normalised(const Eigen::MatrixXd& inputs) const {
+  if (inputs.cols() != mean.size())
+    throw Error(name + ": a policy input has " + std::to_string(inputs.cols()) + " values, expected " + std::to_string(mean.size()));
+  if (!normalise) return inputs.cast<float>();
+  Eigen::MatrixXd out = (inputs.rowwise() - mean.transpose()).array().rowwise() * inv_std.transpose().array();
+  if (clip > 0) out = out.cwiseMax(-clip).cwiseMin(clip);
+  return out.cast<float>();
+}
+
+Skill::Skill(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Skill::~Skill() = default;
+
+std::shared_ptr<const Skill> Skill::load(const std::filesystem::path& model_dir, const std::string& name) {
+  const std::filesystem::path config = model_dir / "config.yaml", networks = model_dir / kRuntimeFileName;
+  if (!std::filesystem::is_directory(model_dir)) throw Error(model_dir.string() + ": no such model directory");
+  if (!std::filesystem::exists(config)) throw Error(config.string() + ": missing (a model directory holds config.yaml and networks.mimic)");
+  if (!std::filesystem::exists(networks))
+    throw Error(networks.string() + ": missing; `mimic export RUN -o " + model_dir.string() + "` writes it (`--networks-only` beside an existing export)");
+  std::unique_ptr<Impl> s = read_skill_networks(read_text_file(networks, kMaxCheckpointBytes), networks);
+  s->dir = model_dir;
+  s->name = !name.empty() ? name : std::filesystem::absolute(model_dir).lexically_normal().filename().string();
+  if (s->name.empty()) s->name = std::filesystem::absolute(model_dir).lexically_normal().parent_path().filename().string();
+  const YamlReader reader(config.string());
+  const YAML::Node root = reader.parse(read_text_file(config, kMaxYamlBytes), "invalid YAML");
+  if (!root.IsMap() || !root["env"].IsDefined()) throw Error(config.string() + ": no 'env' section: the environment the skill acts in");
+  s->factory = make_env_factory(root["env"], reader);
+  // The networks must fit the environment the config builds (a config edited after export, or
+  // networks copied from another model, would act on the wrong observation).
+  const std::unique_ptr<Env> probe = s->factory();
+  auto differs = [&](const std::string& what) {
+    throw Error(networks.string() + ": " + what + " (a config.yaml that is not the one the networks were exported with?)");
+  };
+  if (probe->observation_size() != s->frame_size || probe->action_size() != s->action_size)
+    differs("the networks take observations of " + std::to_string(s->frame_size) + " values and give " + std::to_string(s->action_size) +
+            " actions; " + config.string() + "'s environment has " + std::to_string(probe->observation_size()) + " and " +
+            std::to_string(probe->action_size()));
+  const std::vector<ObservationSlice> layout = probe->observation_layout();
+  bool same_layout = layout.size() == s->layout.size();
+  for (std::size_t i = 0; same_layout && i < layout.size(); ++i)
+    same_layout = layout[i].name == s->layout[i].name && layout[i].size == s->layout[i].size;
+  if (!same_layout) differs("the networks observe " + layout_text(s->layout) + "; " + config.string() + "'s environment " + layout_text(layout));
+  std::vector<std::string> bodies;
+  if (const mjModel* m = probe->physics_model())
+    for (int b = 1; b < m->nbody; ++b) {
+      const char* body = mj_id2name(m, mjOBJ_BODY, b);
+      bodies.emplace_back(body ? body : "?");
+    }
+  if (bodies != s->bodies)
+    differs("the networks were trained on a character of " + std::to_string(s->bodies.size()) + " bodies" +
+            (s->bodies.empty() ? "" : " (" + s->bodies.front() + " ...)") + "; " + config.string() + "'s has " + std::to_string(bodies.size()) +
+            (bodies.empty() ? "" : " (" + bodies.front() + " ...)"));
+  return std::shared_ptr<const Skill>(new Skill(std::move(s)));
+}
+
+const std::string& Skill::name() const { return impl_->name; }
+const std::filesystem::path& Skill::directory() const { return impl_->dir; }
+int Skill::frame_size() const { return impl_->frame_size; }
+int Skill::history() const { return impl_->history; }
+int Skill::input_size() const { return impl_->frame_size * impl_->history; }
+int Skill::action_size() const { return impl_->action_size; }
+long long Skill::policy_parameters() const { return impl_->policy.parameters() + impl_->log_std.size(); }
+
+Eigen::MatrixXd Skill::act(const Eigen::MatrixXd& inputs) const { return impl_->policy.forward(impl_->normalised(inputs)).cast<double>(); }
+
+Eigen::VectorXd Skill::act(const Eigen::VectorXd& input) const { return act(Eigen::MatrixXd(input.transpose())).transpose(); }
+
+Eigen::VectorXd Skill::value(const Eigen::MatrixXd& inputs) const { return impl_->value.forward(impl_->normalised(inputs)).col(0).cast<double>(); }
+
+std::vector<float> Skill::act_floats(const float* inputs, int batch) const {
+  const Eigen::MatrixXd x = Eigen::Map<const FloatMatrix>(inputs, batch, input_size()).cast<double>();
+  const FloatMatrix y = impl_->policy.forward(impl_->normalised(x));
+  return {y.data(), y.data() + y.size()};
+}
+
+}  // namespace mimic

@@ -1,0 +1,132 @@
+// The torch-free runtime (control/) acts as the trainer's LibTorch networks do: on 1,000
+// observations from each committed model's own episodes, and on a GRU policy, the actions agree
+// within 1e-5 relative (the largest difference over max(1, the largest action)).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <iostream>
+
+#include "control/skill_impl.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "learn/runtime_export.hpp"
+#include "learn/trainer_impl.hpp"
+#include "mimic/runtime.hpp"
+#include "../test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+constexpr double kTolerance = 1e-5;
+
+// The LibTorch policy's mean actions for raw inputs (rows), batched, as Trainer::act computes one.
+Eigen::MatrixXd libtorch_actions(Trainer& trainer, const Eigen::MatrixXd& inputs) {
+  torch::NoGradGuard no_grad;
+  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x = trainer.impl().obs_norm.normalize(inputs).cast<float>();
+  const torch::Tensor mean = trainer.impl().learner->policy()->forward(
+      torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32)).first.contiguous();
+  return Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(mean.data_ptr<float>(), mean.size(0), mean.size(1))
+      .cast<double>();
+}
+
+double relative_gap(const Eigen::MatrixXd& ours, const Eigen::MatrixXd& reference) {
+  double worst = 0;
+  for (Eigen::Index i = 0; i < ours.rows(); ++i)
+    worst = std::max(worst, (ours.row(i) - reference.row(i)).cwiseAbs().maxCoeff() / std::max(1.0, reference.row(i).cwiseAbs().maxCoeff()));
+  return worst;
+}
+
+// A model directory for the runtime from a trainer: its config and networks.mimic.
+std::filesystem::path runtime_copy(Trainer& trainer, const std::string& config_text, const std::string& name) {
+  const auto dir = test::temp_dir("runtime_" + name);
+  write_file_atomic(dir / "config.yaml", config_text);
+  trainer.write_runtime_networks(dir / kRuntimeFileName);
+  return dir;
+}
+
+std::vector<std::string> committed_models() {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(MIMIC_SOURCE_DIR) / "models"))
+    if (std::filesystem::exists(e.path() / "checkpoint.pt")) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class CommittedModel : public testing::TestWithParam<std::string> {};
+
+TEST_P(CommittedModel, TorchFreeActionsMatchLibTorchsOnItsOwnEpisodes) {
+  const std::filesystem::path model = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / GetParam();
+  std::unique_ptr<Trainer> trainer;
+  try {
+    trainer = Trainer::load_policy(model);
+  } catch (const Error& e) {
+    if (shared_data_dir().empty()) GTEST_SKIP() << GetParam() << " needs ../shared/data, not found: " << e.what();
+    throw;
+  }
+  const auto dir = runtime_copy(*trainer, read_text_file(model / "config.yaml"), GetParam());
+  const auto skill = Skill::load(dir);
+  ASSERT_EQ(skill->input_size(), trainer->input_size());
+  // 1,000 steps of the runtime's own episodes (restarted where one ends), every input kept.
+  Controller controller({skill}, 7);
+  Eigen::MatrixXd inputs(1000, skill->input_size()), actions(1000, skill->action_size());
+  for (int i = 0; i < 1000; ++i) {
+    const StepInfo info = controller.step();
+    inputs.row(i) = controller.last_input().transpose();
+    actions.row(i) = controller.last_action().transpose();
+    if (info.episode_over) controller.reset();
+  }
+  const double gap = relative_gap(actions, libtorch_actions(*trainer, inputs));
+  EXPECT_LT(gap, kTolerance) << GetParam();
+  std::cout << "models/" << GetParam() << ": the largest relative action difference over 1,000 observations is " << gap << "\n";
+  // The single-input path (Trainer::act's) agrees with the batch.
+  EXPECT_LT(relative_gap(skill->act(Eigen::VectorXd(inputs.row(500).transpose())).transpose(), trainer->act(inputs.row(500).transpose()).transpose()),
+            kTolerance);
+  // A committed networks.mimic is the one the checkpoint gives.
+  if (std::filesystem::exists(model / kRuntimeFileName)) {
+    EXPECT_EQ(read_text_file(model / kRuntimeFileName, kMaxCheckpointBytes), read_text_file(dir / kRuntimeFileName, kMaxCheckpointBytes))
+        << "models/" << GetParam() << "/networks.mimic is stale: mimic export models/" << GetParam() << " -o models/" << GetParam()
+        << " --networks-only";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Runtime, CommittedModel, testing::ValuesIn(committed_models()),
+                         [](const testing::TestParamInfo<std::string>& p) { return p.param; });
+
+std::string walker_config(const std::string& policy) {
+  return "seed: 4\niterations: 2\nenv: {name: planar_walker}\ncollect: {envs: 2, threads: 1, samples: 256}\n"
+         "policy: " + policy + "\nvalue: " + policy + "\nppo: {epochs: 1, value_epochs: 1, minibatch: 64}\n";
+}
+
+TEST(Runtime, AGruPolicyAndItsValueActAsLibTorchsAfterTraining) {
+  // A GRU over three frames (seed 004 section 5.1) with tanh layers, trained two iterations so that
+  // the normaliser holds statistics and no weight is at its initial value.
+  const std::string text = walker_config("{hidden: [24, 16], activation: tanh, history: 3, gru_size: 20}");
+  Trainer trainer(parse_train_config(text, "gru.yaml"));
+  trainer.run();
+  const auto skill = Skill::load(runtime_copy(trainer, text, "gru"));
+  ASSERT_EQ(skill->history(), 3);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal(0.0, 2.0);
+  Eigen::MatrixXd inputs(200, skill->input_size());
+  for (Eigen::Index i = 0; i < inputs.size(); ++i) inputs.data()[i] = normal(rng);
+  inputs += trainer.impl().obs_norm.mean().transpose().replicate(inputs.rows(), 1);
+  EXPECT_LT(relative_gap(skill->act(inputs), libtorch_actions(trainer, inputs)), kTolerance);
+  torch::NoGradGuard no_grad;
+  const Eigen::MatrixXf x = trainer.impl().obs_norm.normalize(inputs).cast<float>();
+  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = x;
+  const torch::Tensor v = trainer.impl().learner->value()->forward(torch::from_blob(const_cast<float*>(rows.data()), {rows.rows(), rows.cols()}, torch::kFloat32));
+  const Eigen::VectorXd value = skill->value(inputs);
+  for (Eigen::Index i = 0; i < value.size(); ++i) EXPECT_NEAR(value[i], v[i].item<double>(), kTolerance * std::max(1.0, std::abs(value[i])));
+}
+
+TEST(Runtime, BeforeAnyStatisticsTheNormaliserIsTheIdentity) {
+  const std::string text = walker_config("{hidden: [8], activation: relu}");
+  Trainer trainer(parse_train_config(text, "fresh.yaml"));
+  const auto skill = Skill::load(runtime_copy(trainer, text, "fresh"));
+  EXPECT_FALSE(skill->impl().normalise);
+  const Eigen::MatrixXd inputs = Eigen::MatrixXd::Random(5, skill->input_size()) * 30.0;
+  EXPECT_LT(relative_gap(skill->act(inputs), libtorch_actions(trainer, inputs)), kTolerance);
+}
+
+}  // namespace
