@@ -1,3 +1,5 @@
+#include <mujoco/mujoco.h>
+
 #include <deque>
 #include <random>
 
@@ -38,7 +40,7 @@ struct Controller::Impl {
   std::deque<Eigen::VectorXd> frames;  // the active skill's last `history` observations, oldest first
   Eigen::VectorXd input, action;
   long long steps = 0;
-  double dt = 0.0;
+  double dt = 0.0;  // control step, seconds
 
   Env& env() { return *envs[active]; }
   const Skill& skill() const { return *skills[active]; }
@@ -82,7 +84,10 @@ StepInfo Controller::step() {
   Impl& c = *impl_;
   c.stack();
   c.action = c.skill().act(c.input);
+  const mjData* d = c.env().physics_data();
+  const double before = d ? d->time : 0.0;
   const StepResult r = c.env().step(c.action);
+  if (d && d->time > before) c.dt = d->time - before;  // environments that are not characters say it here
   ++c.steps;
   c.frames.pop_front();
   c.frames.push_back(r.observation);
@@ -122,8 +127,13 @@ double Controller::control_dt() const { return impl_->dt; }
 double Controller::time() const { return static_cast<double>(impl_->steps) * impl_->dt; }
 long long Controller::steps() const { return impl_->steps; }
 Eigen::Vector3d Controller::root_position() const {
-  const CharacterEnv* c = character_of(*impl_->envs[impl_->active]);
-  return c ? Eigen::Vector3d(c->world().root_position()) : Eigen::Vector3d::Zero();
+  Env& env = *impl_->envs[impl_->active];
+  if (const CharacterEnv* c = character_of(env)) return c->world().root_position();
+  // Another MuJoCo environment (the planar walker): its first body's position, as of the last step.
+  const mjModel* m = env.physics_model();
+  const mjData* d = env.physics_data();
+  if (!m || !d || m->nbody < 2) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d(d->xpos[3], d->xpos[4], d->xpos[5]);
 }
 const Eigen::VectorXd& Controller::last_input() const { return impl_->input; }
 const Eigen::VectorXd& Controller::last_action() const { return impl_->action; }

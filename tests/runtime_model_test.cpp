@@ -1,0 +1,220 @@
+// The runtime's model reader (control/skill.cpp) and its file format (core/array_file): the bytes
+// are pinned against a hand-built file, and every malformed model directory is answered by an
+// error naming the file and the problem, never a crash or a wrong action.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+
+#include "control/skill_impl.hpp"
+#include "core/array_file.hpp"
+#include "core/file_io.hpp"
+#include "error_message.hpp"
+#include "mimic/runtime.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+using test::error_of;
+
+namespace {
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+const std::filesystem::path kWalker = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / "walker_ppo";
+
+TEST(ArrayFile, TheBytesOfAOneScalarFileAreTheDocumentedOnes) {
+  // Header: magic, version 1, CRC-32 of the body, the body's size 17; body: 1 entry, a name of
+  // length 1 ("a"), kind 2 (float64), rank 0, the double 1.0. CRC from zlib.crc32 in Python.
+  const std::string bytes = encode_arrays({NamedArray::of_scalar("a", 1.0)});
+  const unsigned char expected[] = {'M', 'I', 'M', 'I', 'C', 'A', 'R', 'R', 1, 0, 0, 0, 0x3e, 0xb6, 0xaa, 0xa4, 17, 0, 0, 0, 0, 0, 0, 0,
+                                    1, 0, 0, 0, 1, 0, 'a', 2, 0, 0, 0, 0, 0, 0, 0, 0xf0, 0x3f};
+  ASSERT_EQ(bytes.size(), sizeof expected);
+  EXPECT_EQ(std::memcmp(bytes.data(), expected, sizeof expected), 0);
+  const std::vector<NamedArray> back = decode_arrays(bytes);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].name, "a");
+  EXPECT_TRUE(back[0].shape.empty());
+  EXPECT_EQ(back[0].f64, std::vector<double>{1.0});
+}
+
+TEST(ArrayFile, EveryKindRoundTripsAndBadArraysAreRefusedWhenWritten) {
+  const std::vector<NamedArray> arrays = {NamedArray::of_text("t", "two\nlines"), NamedArray::of_floats("w", {2, 3}, {1, 2, 3, 4, 5, -6.5f}),
+                                          NamedArray::of_doubles("d", {2}, {0.25, -1e300})};
+  const std::vector<NamedArray> back = decode_arrays(encode_arrays(arrays));
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[0].text, "two\nlines");
+  EXPECT_EQ(back[1].shape, (std::vector<std::uint32_t>{2, 3}));
+  EXPECT_EQ(back[1].f32[5], -6.5f);
+  EXPECT_EQ(back[2].f64[1], -1e300);
+  EXPECT_TRUE(contains(error_of([] { (void)encode_arrays({NamedArray::of_floats("w", {2, 2}, {1, 2, 3})}); }), "holds 3 values where its shape holds 4"));
+  EXPECT_TRUE(contains(error_of([] { (void)encode_arrays({NamedArray::of_scalar("x", 1), NamedArray::of_scalar("x", 2)}); }), "'x' is given twice"));
+  EXPECT_TRUE(contains(error_of([] { (void)encode_arrays({NamedArray::of_scalar("a b", 1)}); }), "not printable ASCII"));
+  EXPECT_TRUE(contains(error_of([] { (void)encode_arrays({NamedArray::of_floats("r", {1, 1, 1, 1, 1}, {1})}); }), "rank 5, above 4"));
+}
+
+// A copy of the walker's model whose networks.mimic went through `edit` (re-encoded: its CRC-32
+// is right, so what is refused is the content).
+std::filesystem::path edited_model(const std::string& name, const std::function<void(std::vector<NamedArray>&)>& edit) {
+  const auto dir = test::temp_dir("runtime_model_" + name);
+  std::filesystem::copy_file(kWalker / "config.yaml", dir / "config.yaml");
+  std::vector<NamedArray> arrays = decode_arrays(read_text_file(kWalker / "networks.mimic"));
+  edit(arrays);
+  write_file_atomic(dir / "networks.mimic", encode_arrays(arrays));
+  return dir;
+}
+
+// The same with the file's bytes edited (what a disk or a transfer does).
+std::filesystem::path damaged_model(const std::string& name, const std::function<void(std::string&)>& edit) {
+  const auto dir = test::temp_dir("runtime_model_" + name);
+  std::filesystem::copy_file(kWalker / "config.yaml", dir / "config.yaml");
+  std::string bytes = read_text_file(kWalker / "networks.mimic");
+  edit(bytes);
+  write_file_atomic(dir / "networks.mimic", bytes);
+  return dir;
+}
+
+NamedArray& array(std::vector<NamedArray>& arrays, const std::string& name) {
+  for (NamedArray& a : arrays)
+    if (a.name == name) return a;
+  throw Error("test: no array " + name);
+}
+
+void remove_array(std::vector<NamedArray>& arrays, const std::string& name) {
+  std::erase_if(arrays, [&](const NamedArray& a) { return a.name == name; });
+}
+
+struct MalformedModel {
+  std::string what;
+  std::function<std::filesystem::path()> make;
+  std::string expected;        // in the message
+  bool names_networks = true;  // the message names networks.mimic (else the directory or config)
+};
+
+TEST(RuntimeModel, EveryMalformedModelIsANamedErrorNeverACrash) {
+  ASSERT_TRUE(std::filesystem::exists(kWalker / "networks.mimic"));
+  const std::vector<MalformedModel> cases = {
+      {"no directory", [] { return test::temp_dir("runtime_model_none") / "absent"; }, "no such model directory", false},
+      {"no config", [] {
+         const auto d = test::temp_dir("runtime_model_no_config");
+         std::filesystem::copy_file(kWalker / "networks.mimic", d / "networks.mimic");
+         return d;
+       }, "config.yaml: missing", false},
+      {"no networks", [] {
+         const auto d = test::temp_dir("runtime_model_no_networks");
+         std::filesystem::copy_file(kWalker / "config.yaml", d / "config.yaml");
+         return d;
+       }, "networks.mimic: missing; `mimic export RUN -o"},
+      {"empty file", [] { return damaged_model("empty", [](std::string& b) { b.clear(); }); }, "not a mimic array file"},
+      {"a LibTorch checkpoint instead", [] {
+         return damaged_model("checkpoint", [](std::string& b) { b = read_text_file(kWalker / "checkpoint.pt", kMaxCheckpointBytes); });
+       }, "not a mimic array file (it does not start with MIMICARR)"},
+      {"cut inside the header", [] { return damaged_model("header", [](std::string& b) { b.resize(12); }); }, "file ends inside its 24-byte header"},
+      {"cut inside the weights", [] { return damaged_model("cut", [](std::string& b) { b.resize(b.size() / 2); }); }, "(cut short)"},
+      {"bytes appended", [] { return damaged_model("appended", [](std::string& b) { b += "junk"; }); }, "(bytes were added)"},
+      {"a flipped bit in a weight", [] { return damaged_model("flipped", [](std::string& b) { b[b.size() - 100] ^= 0x04; }); },
+       "does not match the one it was written with: the file is damaged"},
+      {"a newer format version", [] { return damaged_model("version", [](std::string& b) { b[8] = 2; }); },
+       "format version 2, where this build reads version 1 (written by a newer mimic"},
+      {"another format", [] { return edited_model("format", [](auto& a) { array(a, "format").text = "something else"; array(a, "format").shape = {14}; }); },
+       "format 'something else', expected 'mimic skill networks'"},
+      {"a layer of the wrong shape", [] {
+         return edited_model("shape", [](auto& a) {
+           NamedArray& w = array(a, "policy.net.layers.1.weight");
+           w.shape = {64, 63};
+           w.f32.resize(64 * 63);
+         });
+       }, "array 'policy.net.layers.1.weight' has shape [64, 63], expected [64, 64]"},
+      {"a NaN weight", [] { return edited_model("nan", [](auto& a) { array(a, "policy.net.layers.0.weight").f32[7] = std::nanf(""); }); },
+       "array 'policy.net.layers.0.weight' holds a value that is not finite"},
+      {"an infinite normaliser mean", [] {
+         return edited_model("inf", [](auto& a) { array(a, "observation.mean").f64[0] = INFINITY; });
+       }, "array 'observation.mean' holds a value that is not finite"},
+      {"a missing bias", [] { return edited_model("bias", [](auto& a) { remove_array(a, "value.net.layers.2.bias"); }); },
+       "no array 'value.net.layers.2.bias'"},
+      {"no layers at all", [] {
+         return edited_model("layers", [](auto& a) {
+           std::erase_if(a, [](const NamedArray& x) { return x.name.rfind("policy.net.", 0) == 0; });
+         });
+       }, "no array 'policy.net.layers.0.weight': the network has no layer"},
+      {"weights stored as float64", [] {
+         return edited_model("kind", [](auto& a) {
+           NamedArray& w = array(a, "policy.log_std");
+           w = NamedArray::of_doubles(w.name, w.shape, std::vector<double>(w.f32.begin(), w.f32.end()));
+         });
+       }, "array 'policy.log_std' is float64, expected float32"},
+      {"an unknown activation", [] {
+         return edited_model("activation", [](auto& a) { array(a, "policy.activation") = NamedArray::of_text("policy.activation", "swish"); });
+       }, "array 'policy.activation' is 'swish', expected relu or tanh"},
+      {"a history of zero", [] { return edited_model("history", [](auto& a) { array(a, "observation.history").f64[0] = 0; }); },
+       "array 'observation.history' is 0.000000, expected an integer in [1, 1024]"},
+      {"a fractional action count", [] { return edited_model("actions", [](auto& a) { array(a, "action_size").f64[0] = 5.5; }); },
+       "array 'action_size' is 5.500000, expected an integer"},
+      {"more actions than the last layer gives", [] { return edited_model("more_actions", [](auto& a) { array(a, "action_size").f64[0] = 7; }); },
+       "the policy's last layer gives 6 values for 7 actions"},
+      {"a layout with a gap", [] {
+         return edited_model("layout", [](auto& a) { array(a, "observation.layout") = NamedArray::of_text("observation.layout", "state 1 16\n"); });
+       }, "part 'state' starts at 1, not 0"},
+      {"a negative variance", [] { return edited_model("variance", [](auto& a) { array(a, "observation.variance").f64[3] = -1; }); },
+       "array 'observation.variance' holds a negative value"},
+      {"a value network with two outputs", [] {
+         return edited_model("value_out", [](auto& a) {
+           NamedArray& w = array(a, "value.net.layers.2.weight");
+           w.shape[0] = 2;
+           w.f32.resize(2 * 64, 0.5f);
+           array(a, "value.net.layers.2.bias") = NamedArray::of_floats("value.net.layers.2.bias", {2}, {0, 0});
+         });
+       }, "the value network's last layer gives 2 values, not 1"},
+      {"networks of another character", [] {
+         return edited_model("bodies", [](auto& a) { array(a, "character.bodies") = NamedArray::of_text("character.bodies", "torso\nleg\n"); });
+       }, "the networks were trained on a character of 2 bodies (torso ...)"},
+      {"a config whose environment is another", [] {
+         const auto d = edited_model("other_env", [](auto&) {});
+         write_file_atomic(d / "config.yaml", "env: {name: reacher}\n");
+         return d;
+       }, "the networks take observations of 17 values and give 6 actions"},
+      {"a config that is not YAML", [] {
+         const auto d = edited_model("bad_yaml", [](auto&) {});
+         write_file_atomic(d / "config.yaml", "env: {name: [\n");
+         return d;
+       }, "config.yaml:", false},
+      {"a config without env", [] {
+         const auto d = edited_model("no_env", [](auto&) {});
+         write_file_atomic(d / "config.yaml", "seed: 1\n");
+         return d;
+       }, "config.yaml: no 'env' section", false},
+  };
+  ASSERT_GE(cases.size(), 20u);
+  for (const MalformedModel& c : cases) {
+    SCOPED_TRACE(c.what);
+    const std::filesystem::path dir = c.make();
+    const std::string message = error_of([&] { (void)Skill::load(dir); });
+    EXPECT_TRUE(contains(message, c.expected)) << message;
+    EXPECT_TRUE(contains(message, (c.names_networks ? dir / "networks.mimic" : dir).string())) << "the message names no file: " << message;
+  }
+}
+
+TEST(RuntimeModel, TheCommittedWalkerLoadsAndWalksForward) {
+  const auto skill = Skill::load(kWalker);
+  EXPECT_EQ(skill->name(), "walker_ppo");
+  EXPECT_EQ(skill->frame_size(), 17);
+  EXPECT_EQ(skill->action_size(), 6);
+  EXPECT_EQ(skill->policy_parameters(), (17 + 1) * 64 + (64 + 1) * 64 + (64 + 1) * 6 + 6);
+  Controller c({skill}, 3);
+  const double x0 = c.root_position().x();
+  for (int i = 0; i < 200; ++i)
+    if (c.step().episode_over) break;
+  EXPECT_GT(c.root_position().x() - x0, 0.5) << "the trained walker walks forward";
+}
+
+TEST(RuntimeModel, AControllerRefusesSkillsOfAnotherCharacterAndUnknownSwitches) {
+  const auto walker = Skill::load(kWalker);
+  const auto other = Skill::load(edited_model("twin", [](auto&) {}), "twin");
+  Controller c({walker, other});
+  EXPECT_EQ(c.skill(), "walker_ppo");
+  EXPECT_TRUE(contains(error_of([&] { c.switch_to("run"); }), "no skill 'run' in this controller (it has walker_ppo, twin)"));
+  EXPECT_TRUE(contains(error_of([&] { Controller twice({walker, walker}); }), "two skills are named 'walker_ppo'"));
+  EXPECT_TRUE(contains(error_of([] { Controller none({}); }), "at least one skill"));
+}
+
+}  // namespace
