@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <random>
 
+#include "control/dense_kernel.hpp"
 #include "control/skill_impl.hpp"
 #include "core/array_file.hpp"
 #include "core/file_io.hpp"
@@ -215,6 +217,59 @@ TEST(RuntimeModel, AControllerRefusesSkillsOfAnotherCharacterAndUnknownSwitches)
   EXPECT_TRUE(contains(error_of([&] { c.switch_to("run"); }), "no skill 'run' in this controller (it has walker_ppo, twin)"));
   EXPECT_TRUE(contains(error_of([&] { Controller twice({walker, walker}); }), "two skills are named 'walker_ppo'"));
   EXPECT_TRUE(contains(error_of([] { Controller none({}); }), "at least one skill"));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(DenseKernel, ALayerIsPinnedByHandAndBothPathsAgreeOnEveryBlockShape) {
+  // x = [[1, 2, 3], [-1, 0, 0.5]], W (input-major) = [[1, 0.5], [0, 0.5], [-1, 0.5]], b = [0.25, -1]:
+  // row 1: 1 - 3 + 0.25 = -1.75, 0.5 + 1 + 1.5 - 1 = 2; row 2: -1 - 0.5 + 0.25 = -1.25, -0.5 + 0.25 - 1 = -1.25.
+  const float x[] = {1, 2, 3, -1, 0, 0.5f}, w[] = {1, 0.5f, 0, 0.5f, -1, 0.5f}, b[] = {0.25f, -1};
+  const float w_out_in[] = {1, 0, -1, 0.5f, 0.5f, 0.5f};
+  float y[4], z[4], one[4];
+  dense_forward(x, 2, 3, w, b, 2, y);
+  dense_forward_portable(x, 2, 3, w, b, 2, z);
+  dense_forward_one(x, 3, w_out_in, b, 2, one);
+  dense_forward_one(x + 3, 3, w_out_in, b, 2, one + 2);
+  const float expected[] = {-1.75f, 2.0f, -1.25f, -1.25f};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(y[i], expected[i]);
+    EXPECT_EQ(z[i], expected[i]);
+    EXPECT_EQ(one[i], expected[i]);
+  }
+  // Every remainder of the blocks (6 and 4 rows; 32, 16 and 8 outputs): batches 1-13, outputs 1-45.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (int n : {1, 3, 4, 5, 6, 9, 10, 11, 13})
+    for (int in : {1, 7, 8, 9, 16, 19, 35})
+      for (int out : {1, 7, 8, 9, 16, 23, 32, 45}) {
+        std::vector<float> X(static_cast<std::size_t>(n * in)), W(static_cast<std::size_t>(out * in)), B(static_cast<std::size_t>(out));
+        for (auto* v : {&X, &W, &B})
+          for (float& f : *v) f = u(rng);
+        std::vector<float> fast(static_cast<std::size_t>(n * out)), slow(fast.size()), single(fast.size()), single_slow(fast.size());
+        dense_forward(X.data(), n, in, W.data(), B.data(), out, fast.data());
+        dense_forward_portable(X.data(), n, in, W.data(), B.data(), out, slow.data());
+        // The batch-1 kernels, row by row, on the output-major copy of W.
+        std::vector<float> Wt(W.size());
+        for (int k = 0; k < in; ++k)
+          for (int j = 0; j < out; ++j) Wt[static_cast<std::size_t>(j * in + k)] = W[static_cast<std::size_t>(k * out + j)];
+        for (int i = 0; i < n; ++i) {
+          dense_forward_one(X.data() + i * in, in, Wt.data(), B.data(), out, single.data() + i * out);
+          dense_forward_one_portable(X.data() + i * in, in, Wt.data(), B.data(), out, single_slow.data() + i * out);
+        }
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < out; ++j) {
+            double exact = static_cast<double>(B[static_cast<std::size_t>(j)]);
+            for (int k = 0; k < in; ++k) exact += static_cast<double>(X[static_cast<std::size_t>(i * in + k)]) * static_cast<double>(W[static_cast<std::size_t>(k * out + j)]);
+            const auto at = static_cast<std::size_t>(i * out + j);
+            EXPECT_NEAR(static_cast<double>(fast[at]), exact, 1e-5) << n << " x " << in << " -> " << out << " at " << i << "," << j;
+            EXPECT_NEAR(static_cast<double>(slow[at]), exact, 1e-5);
+            EXPECT_NEAR(static_cast<double>(single[at]), exact, 1e-5);
+            EXPECT_NEAR(static_cast<double>(single_slow[at]), exact, 1e-5);
+          }
+      }
 }
 
 }  // namespace

@@ -15,6 +15,7 @@ void add_imitation_commands(CLI::App& app);
 void add_distill_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_report_commands(CLI::App& app);
+void add_bench_policy_command(CLI::App& bench);  // under `mimic bench`
 
 // Options every command that reads a motion file accepts.
 void add_load_options(CLI::App& cmd, LoadOptions& opts);

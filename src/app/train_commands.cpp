@@ -206,6 +206,7 @@ void add_train_commands(CLI::App& app) {
 
   CLI::App* bench = app.add_subcommand("bench", "throughput figures");
   bench->require_subcommand(1);
+  add_bench_policy_command(*bench);
   CLI::App* bench_train = bench->add_subcommand(
       "train", "end-to-end training samples/s (the humanoid at seed 004 Table 1 sizes, or --config) beside the simulation-only rate");
   bench_train->add_option("--threads", args->bench.threads, "worker threads (a list: 1,2)")->delimiter(',')->capture_default_str();

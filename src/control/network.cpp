@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "control/dense_kernel.hpp"
 #include "core/error.hpp"
 
 namespace mimic {
@@ -18,8 +19,9 @@ const char* kind_name(NamedArray::Kind k) {
   return k == NamedArray::Kind::Text ? "text" : k == NamedArray::Kind::Float32 ? "float32" : "float64";
 }
 
-FloatMatrix matrix_of(const std::vector<float>& v, std::uint32_t rows, std::uint32_t cols) {
-  return Eigen::Map<const FloatMatrix>(v.data(), rows, cols);
+// The file's [rows, cols] matrix, transposed to [cols, rows].
+FloatMatrix transposed(const std::vector<float>& v, std::uint32_t rows, std::uint32_t cols) {
+  return Eigen::Map<const FloatMatrix>(v.data(), rows, cols).transpose();
 }
 
 Eigen::VectorXf vector_of(const std::vector<float>& v) { return Eigen::Map<const Eigen::VectorXf>(v.data(), static_cast<Eigen::Index>(v.size())); }
@@ -93,8 +95,8 @@ Network Network::read(const ArrayTable& t, const std::string& prefix, int input_
     const std::uint32_t gates = size_of(g + "weight_ih_l0", 0), hidden = gates / 3;
     if (hidden == 0 || gates % 3 != 0) t.fail("array '" + g + "weight_ih_l0' has " + std::to_string(gates) + " rows, not 3 gates of a positive size");
     Gru gru;
-    gru.weight_ih = matrix_of(t.floats(g + "weight_ih_l0", {gates, frame}), gates, frame);
-    gru.weight_hh = matrix_of(t.floats(g + "weight_hh_l0", {gates, hidden}), gates, hidden);
+    gru.weight_ih = transposed(t.floats(g + "weight_ih_l0", {gates, frame}), gates, frame);
+    gru.weight_hh = transposed(t.floats(g + "weight_hh_l0", {gates, hidden}), gates, hidden);
     gru.bias_ih = vector_of(t.floats(g + "bias_ih_l0", {gates}));
     gru.bias_hh = vector_of(t.floats(g + "bias_hh_l0", {gates}));
     n.gru_ = std::move(gru);
@@ -107,7 +109,8 @@ Network Network::read(const ArrayTable& t, const std::string& prefix, int input_
       break;
     }
     const std::uint32_t out = size_of(w, 0);
-    n.layers_.push_back({matrix_of(t.floats(w, {out, width}), out, width), vector_of(t.floats(b, {out}))});
+    const std::vector<float>& weights = t.floats(w, {out, width});
+    n.layers_.push_back({transposed(weights, out, width), Eigen::Map<const FloatMatrix>(weights.data(), out, width), vector_of(t.floats(b, {out}))});
     width = out;
   }
   return n;
@@ -125,10 +128,12 @@ FloatMatrix Network::forward(const FloatMatrix& x) const {
     h = FloatMatrix::Zero(x.rows(), hidden);
     auto sigmoid = [](float v) { return 1.0f / (1.0f + std::exp(-v)); };
     for (int f = 0; f < history_; ++f) {
-      FloatMatrix gi = x.middleCols(f * frame, frame) * gru_->weight_ih.transpose();
-      gi.rowwise() += gru_->bias_ih.transpose();
-      FloatMatrix gh = h * gru_->weight_hh.transpose();
-      gh.rowwise() += gru_->bias_hh.transpose();
+      const FloatMatrix xf = x.middleCols(f * frame, frame);
+      FloatMatrix gi(x.rows(), 3 * hidden), gh(x.rows(), 3 * hidden);
+      dense_forward(xf.data(), static_cast<int>(xf.rows()), static_cast<int>(frame), gru_->weight_ih.data(), gru_->bias_ih.data(),
+                    static_cast<int>(3 * hidden), gi.data());
+      dense_forward(h.data(), static_cast<int>(h.rows()), static_cast<int>(hidden), gru_->weight_hh.data(), gru_->bias_hh.data(),
+                    static_cast<int>(3 * hidden), gh.data());
       for (Eigen::Index i = 0; i < x.rows(); ++i)
         for (Eigen::Index j = 0; j < hidden; ++j) {
           const float r = sigmoid(gi(i, j) + gh(i, j));
@@ -138,19 +143,19 @@ FloatMatrix Network::forward(const FloatMatrix& x) const {
         }
     }
   }
-  const FloatMatrix& in = gru_ ? h : x;
-  FloatMatrix y;
+  FloatMatrix in = gru_ ? std::move(h) : x, y;
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     const Linear& l = layers_[k];
-    if (in.rows() == 1) {  // one sample: a matrix-vector product over the weights' contiguous rows
-      y = (l.weight * (k == 0 ? in : y).transpose() + l.bias).transpose();
-    } else {
-      y = (k == 0 ? in : y) * l.weight.transpose();
-      y.rowwise() += l.bias.transpose();
-    }
+    y.resize(in.rows(), l.weight.cols());
+    if (in.rows() == 1)
+      dense_forward_one(in.data(), static_cast<int>(in.cols()), l.weight_out.data(), l.bias.data(), static_cast<int>(l.weight.cols()), y.data());
+    else
+      dense_forward(in.data(), static_cast<int>(in.rows()), static_cast<int>(in.cols()), l.weight.data(), l.bias.data(), static_cast<int>(l.weight.cols()),
+                    y.data());
     if (k + 1 < layers_.size()) {
       if (activation_ == Activation::Relu) y = y.cwiseMax(0.0f);
       else y = y.array().tanh().matrix();
+      std::swap(in, y);
     }
   }
   return y;
@@ -159,7 +164,7 @@ FloatMatrix Network::forward(const FloatMatrix& x) const {
 long long Network::parameters() const {
   long long n = 0;
   if (gru_) n += gru_->weight_ih.size() + gru_->weight_hh.size() + gru_->bias_ih.size() + gru_->bias_hh.size();
-  for (const Linear& l : layers_) n += l.weight.size() + l.bias.size();
+  for (const Linear& l : layers_) n += l.weight.size() + l.bias.size();  // one layout counted
   return n;
 }
 

@@ -52,12 +52,15 @@ class Network {
   long long parameters() const;
 
  private:
+  // Weights input-major, the transpose of the file's (LibTorch's) [out, in]: dense_kernel.hpp.
+  // Both layouts of a layer's weights: batch 1 streams the output-major one, batches the other.
   struct Linear {
-    FloatMatrix weight;  // [out, in]
+    FloatMatrix weight;      // [in, out]
+    FloatMatrix weight_out;  // [out, in], as in the file
     Eigen::VectorXf bias;
   };
   struct Gru {
-    FloatMatrix weight_ih, weight_hh;  // [3 hidden, frame], [3 hidden, hidden]; gates r, z, n
+    FloatMatrix weight_ih, weight_hh;  // [frame, 3 hidden], [hidden, 3 hidden]; gates r, z, n
     Eigen::VectorXf bias_ih, bias_hh;
   };
   int input_size_ = 0, history_ = 1;
