@@ -27,11 +27,16 @@ namespace mimic {
 // was trained in (config.yaml's `env`: the character, its observations and its action mapping).
 class Skill {
  public:
-  // A model directory (mimic export). `name` defaults to the directory's name. Throws
-  // std::runtime_error (mimic::Error) naming the file and the problem: a missing file, a damaged
-  // or truncated one (CRC-32), a newer format, a layer of the wrong shape, a weight that is not
-  // finite, networks whose sizes or character differ from the config's environment.
-  static std::shared_ptr<const Skill> load(const std::filesystem::path& model_dir, const std::string& name = "");
+  // A model directory (mimic export). `name` defaults to the directory's name. `env_settings`
+  // change the skill's environment as `mimic eval --set` does ("env.max_seconds=30"; env keys
+  // only). Throws std::runtime_error (mimic::Error) naming the file and the problem: a missing
+  // file, a damaged or truncated one (CRC-32), a newer format, a layer of the wrong shape, a
+  // weight that is not finite, networks whose sizes or character differ from the config's
+  // environment, a setting that does not fit it.
+  static std::shared_ptr<const Skill> load(const std::filesystem::path& model_dir, const std::string& name = "",
+                                           const std::vector<std::string>& env_settings = {});
+  struct Impl;
+  explicit Skill(std::unique_ptr<Impl> impl);  // what load() builds
   ~Skill();
   Skill(const Skill&) = delete;
   Skill& operator=(const Skill&) = delete;
@@ -52,11 +57,9 @@ class Skill {
   // is [batch, input_size()] row-major; returns [batch, action_size()] row-major.
   std::vector<float> act_floats(const float* inputs, int batch) const;
 
-  struct Impl;
   const Impl& impl() const { return *impl_; }
 
  private:
-  explicit Skill(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

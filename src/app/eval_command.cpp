@@ -22,6 +22,8 @@
 #include "learn/imitation_eval.hpp"
 #include "learn/runtime_cost.hpp"
 #include "learn/trainer.hpp"
+#include "control/skill_impl.hpp"
+#include "learn/runtime_format.hpp"
 
 namespace mimic::app {
 
@@ -88,24 +90,24 @@ CharacterEnv* character_of(Env& env) {
 // The policy as a function of the character env's (stacked) observations. A policy over behaviour
 // contexts needs --context: the held context's one-hot goes after every stacked frame, as
 // ContextEnv appends it to every observation.
-PolicyFunction policy_on_character(const EvalArgs& args, const Trainer& trainer, Env& env) {
+PolicyFunction policy_on_character(const EvalArgs& args, const std::shared_ptr<const Skill>& skill, Env& env) {
   auto* contexts = dynamic_cast<ContextEnv*>(&env);
   if (args.context >= 0 && !contexts) throw Error(args.run.string() + ": --context: this run's environment has no behaviour context");
-  if (!contexts) return [&trainer](const Eigen::VectorXd& input) { return trainer.act(input); };
+  if (!contexts) return [skill](const Eigen::VectorXd& input) { return skill->act(input); };
   const int k = contexts->contexts(), frame = contexts->inner().observation_size();
   if (args.context < 0)
     throw Error(args.run.string() + ": its policy takes a behaviour context: give --context K (0 to " + std::to_string(k - 1) + ")");
   if (args.context >= k)
     throw Error(args.run.string() + ": --context " + std::to_string(args.context) + ": the run has contexts 0 to " + std::to_string(k - 1));
   const Eigen::VectorXd one_hot = Eigen::VectorXd::Unit(k, args.context);
-  return [&trainer, k, frame, one_hot](const Eigen::VectorXd& input) {
+  return [skill, k, frame, one_hot](const Eigen::VectorXd& input) {
     const Eigen::Index frames = input.size() / frame;
     Eigen::VectorXd with(frames * (frame + k));
     for (Eigen::Index f = 0; f < frames; ++f) {
       with.segment(f * (frame + k), frame) = input.segment(f * frame, frame);
       with.segment(f * (frame + k) + frame, k) = one_hot;
     }
-    return trainer.act(with);
+    return skill->act(with);
   };
 }
 
@@ -116,9 +118,19 @@ std::vector<std::string> with_settings(const EvalArgs& args, const std::vector<s
   return all;
 }
 
+// The run's networks for the runtime: its networks.mimic where it has one (a model exported by
+// mimic export), else its checkpoint's converted in memory (a run directory, an older model).
+struct RunNetworks {
+  std::string bytes;
+  std::filesystem::path source;
+};
+RunNetworks run_networks(const std::filesystem::path& run, const Trainer& loaded) {
+  if (std::filesystem::exists(run / kRuntimeFileName)) return {read_text_file(run / kRuntimeFileName, kMaxCheckpointBytes), run / kRuntimeFileName};
+  return {loaded.runtime_networks(), run / "checkpoint.pt"};
+}
+
 // Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
-std::string robustness(const EvalArgs& args, const Trainer& trainer) {
-  const std::filesystem::path config = args.run / "config.yaml";
+std::string robustness(const EvalArgs& args, const RunNetworks& networks) {
   const int max_frames = static_cast<int>(std::lround(args.robustness_seconds * 30.0));
   spdlog::info("  robustness      cubes of 0.2 m at 0.2 m/s at the torso every frame; {} trials per mass, at most {} frames; "
                "failure: lying on the ground 10 frames",
@@ -126,20 +138,18 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   std::string json = ", \"robustness\": [";
   for (std::size_t i = 0; i < args.masses.size(); ++i) {
     const double mass = args.masses[i];
-    const std::string text = override_config(read_text_file(config), config.string(),
-                                             with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass)
-                                                                           : "env.projectiles={enabled: false}",
-                                                                  fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0),
-                                                                  "rewards=[{source: env}]"}));
-    const TrainConfig cfg = parse_train_config(text, config.string());
-    const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
+    const std::shared_ptr<const Skill> skill =
+        load_skill(args.run, networks.bytes, networks.source, "",
+                   with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
+                                        fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)}));
+    const std::unique_ptr<Env> env = make_skill_env(*skill);
     CharacterEnv* character = character_of(*env);
     if (!character) throw Error(args.run.string() + ": robustness needs a character environment");
     if (std::abs(character->config().sim.control_hz - 30.0) > 1e-9)
       throw Error(args.run.string() + ": robustness counts frames at 30 Hz; this environment runs at " +
                   std::to_string(character->config().sim.control_hz) + " Hz");
-    const PolicyFunction act = policy_on_character(args, trainer, *env);
-    const RobustnessReport r = measure_robustness(*character, act, trainer.config().policy.net.history, args.robustness_trials, max_frames);
+    const PolicyFunction act = policy_on_character(args, skill, *env);
+    const RobustnessReport r = measure_robustness(*character, act, skill->history(), args.robustness_trials, max_frames);
     spdlog::info("    {}     {:.1f} +- {:.1f} frames survived", mass > 0 ? fmt::format("{:6.2f} kg", mass) : std::string("no cubes "), r.mean(), r.std());
     json += fmt::format("{}{{\"mass\": {}, \"frames_mean\": {}, \"frames_std\": {}, \"trials\": {}, \"max_frames\": {}}}", i ? ", " : "", mass,
                         r.mean(), r.std(), r.frames.size(), max_frames);
@@ -178,8 +188,8 @@ std::string latency(const EvalArgs& args, const Trainer& trainer) {
 }
 
 // Seed 000's context switches: every ordered pair of the listed contexts, each held switch_seconds.
-std::string context_switches(const EvalArgs& args, const Trainer& trainer) {
-  const std::unique_ptr<Env> env = trainer.make_env();
+std::string context_switches(const EvalArgs& args, const std::shared_ptr<const Skill>& skill) {
+  const std::unique_ptr<Env> env = make_skill_env(*skill);
   auto* contexts = dynamic_cast<ContextEnv*>(env.get());
   if (!contexts) throw Error(args.run.string() + ": --switch: this run's environment has no behaviour context");
   std::vector<int> distinct = args.switches;
@@ -201,7 +211,7 @@ std::string context_switches(const EvalArgs& args, const Trainer& trainer) {
     for (int to : args.switches) {
       if (from == to) continue;
       const SwitchReport r = measure_switch(
-          *contexts, [&trainer](const Eigen::VectorXd& input) { return trainer.act(input); }, trainer.config().policy.net.history, from,
+          *contexts, [&skill](const Eigen::VectorXd& input) { return skill->act(input); }, skill->history(), from,
           to, args.trials, hold, args.seed);
       spdlog::info("    {} -> {}       fell {} before the switch, {} after; speed {:.2f} +- {:.2f} -> {:.2f} +- {:.2f} m/s", from, to,
                    r.fell_before, r.fell_after, mean_of(r.speed_before), std_of(r.speed_before), mean_of(r.speed_after),
@@ -241,7 +251,11 @@ void evaluate(const EvalArgs& args) {
 
   // Imitation: a character environment and a clip to compare with. A behaviour-context env is
   // measured through the env it wraps, the policy's input given the held context's one-hot.
-  const std::unique_ptr<Env> env = trainer->make_env();
+  // Imitation, robustness and switches run the torch-free runtime (docs/runtime.md), as an
+  // embedding program would: the same networks, to within 1.2e-6 of LibTorch's actions.
+  const RunNetworks networks = run_networks(args.run, *trainer);
+  const std::shared_ptr<const Skill> skill = load_skill(args.run, networks.bytes, networks.source, "", args.settings);
+  const std::unique_ptr<Env> env = make_skill_env(*skill);
   CharacterEnv* character = character_of(*env);
   const bool contexts = dynamic_cast<ContextEnv*>(env.get()) != nullptr;
   if (args.context >= 0 && !contexts) throw Error(args.run.string() + ": --context: this run's environment has no behaviour context");
@@ -253,8 +267,8 @@ void evaluate(const EvalArgs& args) {
     clip = std::make_unique<Clip>(load_motion(args.clip, load));
   }
   if (character && (clip || character->reference())) {
-    const int history = trainer->config().policy.net.history;
-    const PolicyFunction act = policy_on_character(args, *trainer, *env);
+    const int history = skill->history();
+    const PolicyFunction act = policy_on_character(args, skill, *env);
     const ImitationReport r = measure_imitation(*character, act, history, args.trials, clip.get());
     const std::string name = clip ? clip->name : character->reference()->name;
     spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{})",
@@ -285,8 +299,8 @@ void evaluate(const EvalArgs& args) {
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
-  if (!args.masses.empty()) json += robustness(args, *trainer);
-  if (!args.switches.empty()) json += context_switches(args, *trainer);
+  if (!args.masses.empty()) json += robustness(args, networks);
+  if (!args.switches.empty()) json += context_switches(args, skill);
   if (args.latency) json += latency(args, *trainer);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "control/skill_impl.hpp"
+#include "core/config_override.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
@@ -110,18 +111,27 @@ FloatMatrix Skill::Impl::normalised(const Eigen::MatrixXd& inputs) const {
 Skill::Skill(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Skill::~Skill() = default;
 
-std::shared_ptr<const Skill> Skill::load(const std::filesystem::path& model_dir, const std::string& name) {
+std::shared_ptr<const Skill> Skill::load(const std::filesystem::path& model_dir, const std::string& name, const std::vector<std::string>& env_settings) {
   const std::filesystem::path config = model_dir / "config.yaml", networks = model_dir / kRuntimeFileName;
   if (!std::filesystem::is_directory(model_dir)) throw Error(model_dir.string() + ": no such model directory");
   if (!std::filesystem::exists(config)) throw Error(config.string() + ": missing (a model directory holds config.yaml and networks.mimic)");
   if (!std::filesystem::exists(networks))
     throw Error(networks.string() + ": missing; `mimic export RUN -o " + model_dir.string() + "` writes it (`--networks-only` beside an existing export)");
-  std::unique_ptr<Impl> s = read_skill_networks(read_text_file(networks, kMaxCheckpointBytes), networks);
+  return load_skill(model_dir, read_text_file(networks, kMaxCheckpointBytes), networks, name, env_settings);
+}
+
+std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, std::string_view networks_bytes, const std::filesystem::path& networks,
+                                        const std::string& name, const std::vector<std::string>& env_settings) {
+  const std::filesystem::path config = model_dir / "config.yaml";
+  for (const std::string& setting : env_settings)
+    if (setting.rfind("env.", 0) != 0) throw Error("setting '" + setting + "': a skill's environment takes env keys only (env.KEY=VALUE)");
+  std::unique_ptr<Skill::Impl> s = read_skill_networks(networks_bytes, networks);
   s->dir = model_dir;
   s->name = !name.empty() ? name : std::filesystem::absolute(model_dir).lexically_normal().filename().string();
   if (s->name.empty()) s->name = std::filesystem::absolute(model_dir).lexically_normal().parent_path().filename().string();
   const YamlReader reader(config.string());
-  const YAML::Node root = reader.parse(read_text_file(config, kMaxYamlBytes), "invalid YAML");
+  const YAML::Node root =
+      reader.parse(override_config(read_text_file(config, kMaxYamlBytes), config.string(), env_settings), "invalid YAML");
   if (!root.IsMap() || !root["env"].IsDefined()) throw Error(config.string() + ": no 'env' section: the environment the skill acts in");
   s->factory = make_env_factory(root["env"], reader);
   // The networks must fit the environment the config builds (a config edited after export, or
@@ -149,7 +159,7 @@ std::shared_ptr<const Skill> Skill::load(const std::filesystem::path& model_dir,
     differs("the networks were trained on a character of " + std::to_string(s->bodies.size()) + " bodies" +
             (s->bodies.empty() ? "" : " (" + s->bodies.front() + " ...)") + "; " + config.string() + "'s has " + std::to_string(bodies.size()) +
             (bodies.empty() ? "" : " (" + bodies.front() + " ...)"));
-  return std::shared_ptr<const Skill>(new Skill(std::move(s)));
+  return std::make_shared<const Skill>(std::move(s));
 }
 
 const std::string& Skill::name() const { return impl_->name; }

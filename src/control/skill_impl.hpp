@@ -28,6 +28,16 @@ struct Skill::Impl {
   FloatMatrix normalised(const Eigen::MatrixXd& inputs) const;
 };
 
+// A skill from a model directory's config.yaml (with `env_settings` applied) and the bytes of its
+// networks file (`networks` names it in errors: the file they were read from, or where they came
+// from). What Skill::load does once it has read the file; `mimic eval` gives the bytes of a run's
+// checkpoint converted in memory where the directory has no networks.mimic.
+std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, std::string_view networks_bytes,
+                                        const std::filesystem::path& networks, const std::string& name,
+                                        const std::vector<std::string>& env_settings);
+// A new environment of the skill's (its config's env, settings applied).
+inline std::unique_ptr<Env> make_skill_env(const Skill& s) { return s.impl().factory(); }
+
 // The skill held by the arrays of `networks` (a networks.mimic file's path, named in errors),
 // without an environment: what the runtime checks in the file alone (the model-reader fuzz
 // target's entry). Throws Error naming the file and the problem.

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/config_override.hpp"
+
 namespace mimic {
 
 struct NetworkConfig {
@@ -123,10 +125,7 @@ int resolve_threads(int requested);
 // Parses YAML text; `source` names it in errors (ParseError: "source:line: 'ppo.clip': ...").
 TrainConfig parse_train_config(const std::string& text, const std::string& source);
 TrainConfig load_train_config(const std::filesystem::path& path);
-// The config text with `settings` ("ppo.clip=0.1", "rewards.0.episodes=10": keys and list
-// indices joined by dots, the value in YAML) applied, re-emitted as YAML under a comment that
-// lists them; Error naming the setting when a path does not fit the config.
-std::string override_config(const std::string& text, const std::string& source, const std::vector<std::string>& settings);
+// override_config (--set): core/config_override.hpp.
 
 // The config text with its top-level `iterations` set to n, comments and layout kept: the line
 // `iterations: ...` is replaced (or one added), or, for a config that names it some other way

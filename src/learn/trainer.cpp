@@ -421,6 +421,7 @@ void Trainer::export_model(const std::filesystem::path& path) {
 }
 
 void Trainer::write_runtime_networks(const std::filesystem::path& path) const { write_runtime_file(*impl_, path); }
+std::string Trainer::runtime_networks() const { return encode_arrays(runtime_arrays(*impl_)); }
 
 std::filesystem::path Trainer::snapshot_path(const std::filesystem::path& run, int iteration) {
   return run / "snapshots" / fmt::format("{:06d}.pt", iteration);

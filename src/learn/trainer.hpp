@@ -95,6 +95,7 @@ class Trainer {
   // The policy, value network and observation normaliser in the runtime's own format
   // (learn/runtime_export.hpp, docs/runtime.md), atomically.
   void write_runtime_networks(const std::filesystem::path& path) const;
+  std::string runtime_networks() const;  // the same file's bytes
   // Averages the policy's weights with those of other checkpoints of the same config (run
   // directories or checkpoint files; stochastic weight averaging over a run's last checkpoints).
   // Returns the largest gap between their observation normalisers' means and this one's, in this
