@@ -89,7 +89,7 @@ TEST(Retarget, MapErrorsNameTheFileAndTheProblem) {
   for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
            {"scale: 0.5\n", "m.yaml:1: 'joints' must map target joint names to source joint names"},
            {"joints: {root: Hips}\nsites:\n  - {joint: root, offset: [0, 0, 1]}\n", "m.yaml:3: a site needs name, joint and offset: [x, y, z]"},
-           {"[joints]: 1\n", "m.yaml:1: a key must be a name"}}) {
+           {"[joints]: 1\n", "m.yaml:1: a key that is a list, where keys are names"}}) {
     try {
       parse_retarget_map(text, "m.yaml");
       FAIL() << text;

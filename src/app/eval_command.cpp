@@ -22,8 +22,8 @@
 #include "learn/imitation_eval.hpp"
 #include "learn/runtime_cost.hpp"
 #include "learn/trainer.hpp"
+#include "app/run_skill.hpp"
 #include "control/skill_impl.hpp"
-#include "learn/runtime_format.hpp"
 
 namespace mimic::app {
 
@@ -118,19 +118,8 @@ std::vector<std::string> with_settings(const EvalArgs& args, const std::vector<s
   return all;
 }
 
-// The run's networks for the runtime: its networks.mimic where it has one (a model exported by
-// mimic export), else its checkpoint's converted in memory (a run directory, an older model).
-struct RunNetworks {
-  std::string bytes;
-  std::filesystem::path source;
-};
-RunNetworks run_networks(const std::filesystem::path& run, const Trainer& loaded) {
-  if (std::filesystem::exists(run / kRuntimeFileName)) return {read_text_file(run / kRuntimeFileName, kMaxCheckpointBytes), run / kRuntimeFileName};
-  return {loaded.runtime_networks(), run / "checkpoint.pt"};
-}
-
 // Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
-std::string robustness(const EvalArgs& args, const RunNetworks& networks) {
+std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   const int max_frames = static_cast<int>(std::lround(args.robustness_seconds * 30.0));
   spdlog::info("  robustness      cubes of 0.2 m at 0.2 m/s at the torso every frame; {} trials per mass, at most {} frames; "
                "failure: lying on the ground 10 frames",
@@ -139,9 +128,10 @@ std::string robustness(const EvalArgs& args, const RunNetworks& networks) {
   for (std::size_t i = 0; i < args.masses.size(); ++i) {
     const double mass = args.masses[i];
     const std::shared_ptr<const Skill> skill =
-        load_skill(args.run, networks.bytes, networks.source, "",
-                   with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
-                                        fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)}));
+        run_skill(args.run,
+                  with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
+                                       fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)}),
+                  &trainer);
     const std::unique_ptr<Env> env = make_skill_env(*skill);
     CharacterEnv* character = character_of(*env);
     if (!character) throw Error(args.run.string() + ": robustness needs a character environment");
@@ -253,8 +243,7 @@ void evaluate(const EvalArgs& args) {
   // measured through the env it wraps, the policy's input given the held context's one-hot.
   // Imitation, robustness and switches run the torch-free runtime (docs/runtime.md), as an
   // embedding program would: the same networks, to within 1.2e-6 of LibTorch's actions.
-  const RunNetworks networks = run_networks(args.run, *trainer);
-  const std::shared_ptr<const Skill> skill = load_skill(args.run, networks.bytes, networks.source, "", args.settings);
+  const std::shared_ptr<const Skill> skill = run_skill(args.run, args.settings, trainer.get());
   const std::unique_ptr<Env> env = make_skill_env(*skill);
   CharacterEnv* character = character_of(*env);
   const bool contexts = dynamic_cast<ContextEnv*>(env.get()) != nullptr;
@@ -299,7 +288,7 @@ void evaluate(const EvalArgs& args) {
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
-  if (!args.masses.empty()) json += robustness(args, networks);
+  if (!args.masses.empty()) json += robustness(args, *trainer);
   if (!args.switches.empty()) json += context_switches(args, skill);
   if (args.latency) json += latency(args, *trainer);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");

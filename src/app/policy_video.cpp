@@ -10,6 +10,8 @@
 #include "env/character_env.hpp"
 #include "env/context_env.hpp"
 #include "learn/frame_history.hpp"
+#include "app/run_skill.hpp"
+#include "control/skill_impl.hpp"
 #include "learn/trainer.hpp"
 #include "render/offscreen.hpp"
 #include "render/video_writer.hpp"
@@ -17,9 +19,10 @@
 namespace mimic::app {
 
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
-  const std::unique_ptr<Trainer> loaded = Trainer::load_policy(run);
+  const std::shared_ptr<const Skill> skill = run_skill(run);
+  const std::unique_ptr<Env> env = make_skill_env(*skill);
   try {
-    return render_policy_video(*loaded, out, opts);
+    return render_policy_video(*env, [&skill](const Eigen::VectorXd& x) { return skill->act(x); }, skill->history(), out, opts);
   } catch (const Error& e) {
     throw Error(run.string() + ": " + e.what());
   }
@@ -27,12 +30,17 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
 
 PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
   const std::unique_ptr<Env> env = trainer.make_env();
+  return render_policy_video(*env, [&trainer](const Eigen::VectorXd& x) { return trainer.act(x); }, trainer.config().policy.net.history, out, opts);
+}
+
+PolicyVideoStats render_policy_video(Env& env_ref, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& act, int history,
+                                     const std::filesystem::path& out, const PolicyVideoOptions& opts) {
+  Env* const env = &env_ref;
   mjData* const data = env->physics_data();
   if (!env->physics_model() || !data) throw Error("its environment has nothing to draw");
-  const int history = trainer.config().policy.net.history;
 
   // Contexts held in turn from the first step on (validated before anything is written).
-  auto* behaviours = dynamic_cast<ContextEnv*>(env.get());
+  auto* behaviours = dynamic_cast<ContextEnv*>(env);
   if (!opts.contexts.empty() && !behaviours) throw Error("--contexts: its environment has no behaviour context");
   for (int c : opts.contexts)
     if (c < 0 || c >= behaviours->contexts())
@@ -46,7 +54,7 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   // Steps per video frame: the control rate measured on the first step, brought near opts.fps.
   const double t0 = data->time;
   PolicyVideoStats stats;
-  StepResult r = env->step(trainer.act(frames.stacked()));
+  StepResult r = env->step(act(frames.stacked()));
   const double control_dt = data->time - t0;
   if (!(control_dt > 0)) throw Error("environment time does not advance");
   const int every = std::max(1, static_cast<int>(std::lround(1.0 / (opts.fps * control_dt))));
@@ -57,7 +65,7 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
   // The ghost: the pose the character is measured against (CharacterEnv::reference_pose), in a
   // second data of the same model.
   // A behaviour-context env draws its character through the env it wraps.
-  const auto* character = dynamic_cast<const CharacterEnv*>(behaviours ? &behaviours->inner() : env.get());
+  const auto* character = dynamic_cast<const CharacterEnv*>(behaviours ? &behaviours->inner() : env);
   if (opts.ghost && (!character || (!character->reference() && !character->start_source().clip)))
     throw Error("--ghost needs an environment with a reference clip (tracking) or starts drawn from clips (init: mocap)");
   std::unique_ptr<mjData, void (*)(mjData*)> ghost(opts.ghost ? mj_makeData(env->physics_model()) : nullptr, mj_deleteData);
@@ -72,7 +80,7 @@ PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesyst
       if (next != behaviours->context()) spdlog::info("  {:.2f} s: context {}", t * control_dt, next);
       behaviours->hold_context(next);
     }
-    if (t > 1) r = env->step(trainer.act(frames.stacked()));
+    if (t > 1) r = env->step(act(frames.stacked()));
     episode_return += r.reward();
     frames.push(r.observation);
     const Vec3 look = follow.update(Vec3(data->xpos[3], data->xpos[4], data->xpos[5]));  // body 1: the root

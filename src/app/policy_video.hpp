@@ -1,6 +1,7 @@
 #pragma once
 // Videos of trained policies (mimic render RUN).
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "env/env.hpp"
@@ -31,9 +32,13 @@ struct PolicyVideoStats {
   std::vector<std::pair<double, Termination>> episodes;  // return and ending of each episode that ended
 };
 
-// Plays RUN/checkpoint.pt (config RUN/config.yaml) deterministically and writes `out` (.mp4/.gif).
+// Plays a run or model directory's policy deterministically (mean actions) on the torch-free
+// runtime (app/run_skill.hpp) and writes `out` (.mp4/.gif).
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts);
 // The same for a trainer in memory (its environments and current policy).
 PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesystem::path& out, const PolicyVideoOptions& opts);
+// Any policy: `act` maps `history` stacked observations of `env` (oldest first) to an action.
+PolicyVideoStats render_policy_video(Env& env, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& act, int history,
+                                     const std::filesystem::path& out, const PolicyVideoOptions& opts);
 
 }  // namespace mimic::app

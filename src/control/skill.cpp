@@ -1,5 +1,3 @@
-#include <mujoco/mujoco.h>
-
 #include <sstream>
 
 #include "control/skill_impl.hpp"
@@ -7,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
+#include "sim/mujoco_load.hpp"
 
 namespace mimic {
 
@@ -149,12 +148,7 @@ std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, 
   for (std::size_t i = 0; same_layout && i < layout.size(); ++i)
     same_layout = layout[i].name == s->layout[i].name && layout[i].size == s->layout[i].size;
   if (!same_layout) differs("the networks observe " + layout_text(s->layout) + "; " + config.string() + "'s environment " + layout_text(layout));
-  std::vector<std::string> bodies;
-  if (const mjModel* m = probe->physics_model())
-    for (int b = 1; b < m->nbody; ++b) {
-      const char* body = mj_id2name(m, mjOBJ_BODY, b);
-      bodies.emplace_back(body ? body : "?");
-    }
+  const std::vector<std::string> bodies = character_body_names(probe->physics_model());
   if (bodies != s->bodies)
     differs("the networks were trained on a character of " + std::to_string(s->bodies.size()) + " bodies" +
             (s->bodies.empty() ? "" : " (" + s->bodies.front() + " ...)") + "; " + config.string() + "'s has " + std::to_string(bodies.size()) +

@@ -1,8 +1,8 @@
 #include "learn/runtime_export.hpp"
 
-#include <mujoco/mujoco.h>
 
 #include "core/file_io.hpp"
+#include "sim/mujoco_load.hpp"
 
 namespace mimic {
 
@@ -40,15 +40,12 @@ std::vector<NamedArray> runtime_arrays(const Trainer::Impl& t) {
   out.push_back(NamedArray::of_doubles("observation.variance", {n}, to_vector(t.obs_norm.variance())));
   out.push_back(NamedArray::of_scalar("observation.epsilon", t.obs_norm.epsilon()));
   out.push_back(NamedArray::of_scalar("observation.clip", t.obs_norm.clip()));
-  // The character the networks act on: its MuJoCo bodies, in order (a world must have the same).
+  // The character the networks act on: its MuJoCo bodies, in order (a world must have the same;
+  // projectiles and other bodies an environment adds are not the character's).
   {
     const std::unique_ptr<Env> probe = t.factory();
     std::string bodies;
-    if (const mjModel* m = probe->physics_model())
-      for (int b = 1; b < m->nbody; ++b) {
-        const char* name = mj_id2name(m, mjOBJ_BODY, b);
-        bodies += std::string(name ? name : "?") + "\n";
-      }
+    for (const std::string& name : character_body_names(probe->physics_model())) bodies += name + "\n";
     out.push_back(NamedArray::of_text("character.bodies", bodies));
   }
   out.push_back(NamedArray::of_text("policy.activation", t.cfg.policy.net.activation));

@@ -34,3 +34,18 @@ mjModel* compile_mjcf(const std::string& mjcf, const std::string& what) {
 }
 
 }  // namespace mimic
+
+namespace mimic {
+
+std::vector<std::string> character_body_names(const mjModel* m) {
+  std::vector<std::string> names;
+  if (!m || m->nbody < 2) return names;
+  for (int b = 1; b < m->nbody; ++b) {
+    if (m->body_rootid[b] != m->body_rootid[1]) continue;
+    const char* name = mj_id2name(m, mjOBJ_BODY, b);
+    names.emplace_back(name ? name : "?");
+  }
+  return names;
+}
+
+}  // namespace mimic
