@@ -273,3 +273,52 @@ TEST(DenseKernel, ALayerIsPinnedByHandAndBothPathsAgreeOnEveryBlockShape) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RuntimeController, ASwitchHandsTheCharactersStateToTheOtherSkillWhichCarriesOn) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
+  Controller c({Skill::load(models / "humanoid_walk_iccgan", "walk"), Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")}, 5);
+  EXPECT_NEAR(c.control_dt(), 1.0 / 30.0, 1e-12);
+  for (int i = 0; i < 45; ++i) ASSERT_FALSE(c.step().episode_over);
+  const Eigen::Vector3d before = c.root_position();
+  const long long steps = c.steps();
+  c.switch_to("run");
+  EXPECT_EQ(c.skill(), "run");
+  // The run skill's world holds the walk's state; its own start rules apply (the run lifts a start
+  // out of the floor by the depth a foot reaches into it, plus 1 mm: a few millimetres here).
+  EXPECT_LT((c.root_position() - before).head<2>().norm(), 1e-9);
+  EXPECT_LT(std::abs(c.root_position().z() - before.z()), 0.01);
+  EXPECT_EQ(c.steps(), steps);
+  // The run acts from there (a switch at any moment may fall: when to switch is seed 004's
+  // score-based rule, the next step of the controller).
+  int taken = 0;
+  for (; taken < 60; ++taken)
+    if (c.step().episode_over) break;
+  EXPECT_GT(taken, 5);
+  EXPECT_EQ(c.steps(), steps + taken + (taken < 60 ? 1 : 0));
+  c.switch_to("walk");
+  EXPECT_EQ(c.skill(), "walk");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(RuntimeController, EnvironmentSettingsApplyAndProjectilesAreNotTakenForAnotherCharacter) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const std::filesystem::path walk = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / "humanoid_walk_iccgan";
+  // Projectiles add free bodies to the world (before the character's in MuJoCo's body order).
+  const auto skill = Skill::load(walk, "", {"env.projectiles={enabled: true, mass: 2}", "env.max_seconds=1"});
+  Controller c({skill});
+  StepInfo info;
+  for (int i = 0; i < 40 && !info.episode_over; ++i) info = c.step();
+  EXPECT_TRUE(info.episode_over) << "env.max_seconds=1 ends the episode within 40 steps";
+  EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"ppo.clip=0.1"}); }), "env keys only"));
+  EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"env.no_such_key=1"}); }), "no_such_key"));
+}
+
+}  // namespace

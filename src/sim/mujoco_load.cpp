@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "core/error.hpp"
 
@@ -40,8 +41,15 @@ namespace mimic {
 std::vector<std::string> character_body_names(const mjModel* m) {
   std::vector<std::string> names;
   if (!m || m->nbody < 2) return names;
+  // The largest tree under the world (the first of equal ones): projectiles are bodies of their
+  // own, added before or after the character.
+  std::vector<int> size(static_cast<std::size_t>(m->nbody), 0);
+  for (int b = 1; b < m->nbody; ++b) ++size[static_cast<std::size_t>(m->body_rootid[b])];
+  int root = 1;
+  for (int b = 1; b < m->nbody; ++b)
+    if (size[static_cast<std::size_t>(b)] > size[static_cast<std::size_t>(root)]) root = b;
   for (int b = 1; b < m->nbody; ++b) {
-    if (m->body_rootid[b] != m->body_rootid[1]) continue;
+    if (m->body_rootid[b] != root) continue;
     const char* name = mj_id2name(m, mjOBJ_BODY, b);
     names.emplace_back(name ? name : "?");
   }

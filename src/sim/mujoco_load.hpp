@@ -11,9 +11,10 @@ namespace mimic {
 // The compiled model; throws Error "MuJoCo rejected the model of <what>: <MuJoCo's message>".
 mjModel_* compile_mjcf(const std::string& mjcf, const std::string& what);
 
-// The names of the bodies of the model's first tree under the world (the character: body 1 and
-// its descendants), in body order; bodies an environment adds beside it (projectiles, targets)
-// are not among them. What a trained skill's file records and a world it runs in must match.
+// The names of the bodies of the model's largest tree under the world (the character: its root
+// body and the root's descendants), in body order; the bodies an environment adds beside it
+// (projectiles, targets) are not among them. What a trained skill's file records and a world it
+// runs in must match.
 std::vector<std::string> character_body_names(const mjModel_* m);
 
 }  // namespace mimic
