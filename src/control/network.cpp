@@ -60,22 +60,30 @@ int ArrayTable::count(const std::string& name, int lo, int hi) const {
   return static_cast<int>(v);
 }
 
+namespace {
+
+// The values of array `a` when it is of `kind` and `shape` and every value is finite.
+template <class T>
+const std::vector<T>& checked(const ArrayTable& t, const NamedArray& a, NamedArray::Kind kind, const std::vector<T>& values,
+                              const std::vector<std::uint32_t>& shape) {
+  if (a.kind != kind) t.fail("array '" + a.name + "' is " + kind_name(a.kind) + ", expected " + kind_name(kind));
+  if (a.shape != shape) t.fail("array '" + a.name + "' has shape " + shape_text(a.shape) + ", expected " + shape_text(shape));
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      t.fail("array '" + a.name + "' holds a value that is not finite (" + std::to_string(values[i]) + " at " + std::to_string(i) + ")");
+  return values;
+}
+
+}  // namespace
+
 const std::vector<float>& ArrayTable::floats(const std::string& name, const std::vector<std::uint32_t>& shape) const {
   const NamedArray& a = at(name);
-  if (a.kind != NamedArray::Kind::Float32) fail("array '" + name + "' is " + kind_name(a.kind) + ", expected float32");
-  if (a.shape != shape) fail("array '" + name + "' has shape " + shape_text(a.shape) + ", expected " + shape_text(shape));
-  for (std::size_t i = 0; i < a.f32.size(); ++i)
-    if (!std::isfinite(a.f32[i])) fail("array '" + name + "' holds a value that is not finite (" + std::to_string(a.f32[i]) + " at " + std::to_string(i) + ")");
-  return a.f32;
+  return checked(*this, a, NamedArray::Kind::Float32, a.f32, shape);
 }
 
 const std::vector<double>& ArrayTable::doubles(const std::string& name, const std::vector<std::uint32_t>& shape) const {
   const NamedArray& a = at(name);
-  if (a.kind != NamedArray::Kind::Float64) fail("array '" + name + "' is " + kind_name(a.kind) + ", expected float64");
-  if (a.shape != shape) fail("array '" + name + "' has shape " + shape_text(a.shape) + ", expected " + shape_text(shape));
-  for (std::size_t i = 0; i < a.f64.size(); ++i)
-    if (!std::isfinite(a.f64[i])) fail("array '" + name + "' holds a value that is not finite (" + std::to_string(a.f64[i]) + " at " + std::to_string(i) + ")");
-  return a.f64;
+  return checked(*this, a, NamedArray::Kind::Float64, a.f64, shape);
 }
 
 Network Network::read(const ArrayTable& t, const std::string& prefix, int input_size, int history, Activation activation) {

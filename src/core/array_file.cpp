@@ -93,20 +93,14 @@ NamedArray NamedArray::of_text(std::string name, std::string text) {
 }
 
 NamedArray NamedArray::of_floats(std::string name, std::vector<std::uint32_t> shape, std::vector<float> values) {
-  NamedArray a;
-  a.name = std::move(name);
-  a.kind = Kind::Float32;
-  a.shape = std::move(shape);
-  a.f32 = std::move(values);
+  NamedArray a = of_text(std::move(name), "");
+  a.kind = Kind::Float32, a.shape = std::move(shape), a.f32 = std::move(values);
   return a;
 }
 
 NamedArray NamedArray::of_doubles(std::string name, std::vector<std::uint32_t> shape, std::vector<double> values) {
-  NamedArray a;
-  a.name = std::move(name);
-  a.kind = Kind::Float64;
-  a.shape = std::move(shape);
-  a.f64 = std::move(values);
+  NamedArray a = of_text(std::move(name), "");
+  a.kind = Kind::Float64, a.shape = std::move(shape), a.f64 = std::move(values);
   return a;
 }
 
