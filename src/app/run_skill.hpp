@@ -1,7 +1,8 @@
 #pragma once
 // A run or model directory as a runtime skill (docs/runtime.md), for the commands that act with a
-// trained policy (eval, render): its networks.mimic where it has one (a model written by mimic
-// export), else its checkpoint's networks converted in memory (a run directory, an older model).
+// trained policy (eval, render): its networks.mimic where it has one that is not older than its
+// checkpoint.pt (a model written by mimic export), else the checkpoint's networks converted in
+// memory (a run directory, an older model, a run trained on after --networks-only).
 #include <filesystem>
 #include <memory>
 #include <string>

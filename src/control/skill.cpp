@@ -171,6 +171,7 @@ Eigen::VectorXd Skill::act(const Eigen::VectorXd& input) const { return act(Eige
 Eigen::VectorXd Skill::value(const Eigen::MatrixXd& inputs) const { return impl_->value.forward(impl_->normalised(inputs)).col(0).cast<double>(); }
 
 std::vector<float> Skill::act_floats(const float* inputs, int batch) const {
+  if (batch < 1 || inputs == nullptr) throw Error(impl_->name + ": act_floats needs a batch of at least one input");
   const Eigen::MatrixXd x = Eigen::Map<const FloatMatrix>(inputs, batch, input_size()).cast<double>();
   const FloatMatrix y = impl_->policy.forward(impl_->normalised(x));
   return {y.data(), y.data() + y.size()};
