@@ -32,20 +32,6 @@ Eigen::MatrixXd own_inputs(const std::shared_ptr<const Skill>& skill, int n) {
   return inputs;
 }
 
-double runtime_microseconds(const Skill& skill, const Eigen::MatrixXd& inputs, int batch, double seconds) {
-  std::vector<Eigen::MatrixXd> batches;
-  for (Eigen::Index r = 0; r + batch <= inputs.rows(); r += batch) batches.push_back(inputs.middleRows(r, batch));
-  double sink = 0;
-  for (std::size_t i = 0; i < std::min<std::size_t>(batches.size(), 10); ++i) sink += skill.act(batches[i])(0, 0);
-  long long calls = 0;
-  const Stopwatch clock;
-  while (clock.seconds() < seconds)
-    for (const Eigen::MatrixXd& b : batches) sink += skill.act(b)(0, 0), ++calls;
-  const double elapsed = clock.seconds();
-  if (sink == 1234.5678) calls += 0;  // keeps the results alive
-  return elapsed * 1e6 / static_cast<double>(calls);
-}
-
 // Control steps per second (summed over the characters) of `n` characters, each its own
 // controller stepped in turn on this thread: simulation and inference, as a game's update loop.
 double crowd_steps_per_second(const std::shared_ptr<const Skill>& skill, int n, double seconds) {
@@ -84,9 +70,10 @@ void add_bench_policy_command(CLI::App& bench) {
       max_diff = std::max(max_diff, d);
       max_relative = std::max(max_relative, d / std::max(1.0, theirs.row(i).cwiseAbs().maxCoeff()));
     }
-    const double free1 = runtime_microseconds(*skill, inputs, 1, args->seconds);
+    const auto runtime = [&skill](const Eigen::MatrixXd& b) { return skill->act(b); };
+    const double free1 = microseconds_per_batch(inputs, 1, args->seconds, runtime);
     const double torch1 = libtorch_policy_microseconds(*trainer, inputs, 1, args->seconds);
-    const double free64 = runtime_microseconds(*skill, inputs, 64, args->seconds);
+    const double free64 = microseconds_per_batch(inputs, 64, args->seconds, runtime);
     const double torch64 = libtorch_policy_microseconds(*trainer, inputs, 64, args->seconds);
     fmt::print("{}: {} inputs from its own episodes\n", skill->name(), inputs.rows());
     fmt::print("  batch 1:   torch-free {:8.1f} us, LibTorch {:8.1f} us ({:.1f}x)\n", free1, torch1, torch1 / free1);

@@ -80,13 +80,6 @@ std::string links_json(const ImitationReport& r, const std::vector<double>& per_
   return out + "}";
 }
 
-// The simulated character a run's environment drives: a behaviour-context env's through the env
-// it wraps. Null when there is none.
-CharacterEnv* character_of(Env& env) {
-  auto* contexts = dynamic_cast<ContextEnv*>(&env);
-  return dynamic_cast<CharacterEnv*>(contexts ? &contexts->inner() : &env);
-}
-
 // The policy as a function of the character env's (stacked) observations. A policy over behaviour
 // contexts needs --context: the held context's one-hot goes after every stacked frame, as
 // ContextEnv appends it to every observation.

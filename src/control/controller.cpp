@@ -12,13 +12,6 @@ namespace mimic {
 
 namespace {
 
-// The character behind an environment (through a behaviour-context wrapper); null for others.
-CharacterEnv* character_of(Env& env) {
-  if (auto* c = dynamic_cast<CharacterEnv*>(&env)) return c;
-  if (auto* w = dynamic_cast<ContextEnv*>(&env)) return character_of(w->inner());
-  return nullptr;
-}
-
 const char* ending_name(Termination t) {
   switch (t) {
     case Termination::Fall: return "fall";

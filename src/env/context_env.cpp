@@ -80,4 +80,9 @@ void ContextEnv::hold_context(int c) {
   held_ = true;
 }
 
+CharacterEnv* character_of(Env& env) {
+  auto* contexts = dynamic_cast<ContextEnv*>(&env);
+  return dynamic_cast<CharacterEnv*>(contexts ? &contexts->inner() : &env);
+}
+
 }  // namespace mimic

@@ -21,6 +21,10 @@ namespace mimic {
 // "context"), by value so that it outlives a temporary layout; empty when the layout has none.
 std::optional<ObservationSlice> context_slice(const std::vector<ObservationSlice>& layout);
 
+// The simulated character an environment drives: a behaviour-context env's through the env it
+// wraps. Null when there is none (the walker, the arm).
+CharacterEnv* character_of(Env& env);
+
 class ContextEnv : public Env {
  public:
   // `contexts` >= 2; `period` steps between draws (0: only at reset). starts_by_context needs a

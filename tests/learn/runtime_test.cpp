@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "learn/imitation_eval.hpp"
+#include "learn/policy_timing.hpp"
 #include "learn/runtime_export.hpp"
 #include "motion/clip_io.hpp"
 #include "learn/trainer_impl.hpp"
@@ -28,16 +29,6 @@ constexpr int kSteps = 100;
 #else
 constexpr int kSteps = 1000;
 #endif
-
-// The LibTorch policy's mean actions for raw inputs (rows), batched, as Trainer::act computes one.
-Eigen::MatrixXd libtorch_actions(Trainer& trainer, const Eigen::MatrixXd& inputs) {
-  torch::NoGradGuard no_grad;
-  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x = trainer.impl().obs_norm.normalize(inputs).cast<float>();
-  const torch::Tensor mean = trainer.impl().learner->policy()->forward(
-      torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32)).first.contiguous();
-  return Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(mean.data_ptr<float>(), mean.size(0), mean.size(1))
-      .cast<double>();
-}
 
 double relative_gap(const Eigen::MatrixXd& ours, const Eigen::MatrixXd& reference) {
   double worst = 0;
@@ -94,7 +85,7 @@ TEST_P(CommittedModel, TorchFreeActionsMatchLibTorchsOnItsOwnEpisodes) {
   }
   // The controller acted one input at a time (the batch-1 kernel); the whole set as one batch
   // runs the blocked kernel.
-  const Eigen::MatrixXd reference = libtorch_actions(*trainer, inputs);
+  const Eigen::MatrixXd reference = libtorch_policy_actions(*trainer, inputs);
   const double gap = std::max(relative_gap(actions, reference), relative_gap(skill->act(inputs), reference));
   EXPECT_LT(gap, kTolerance) << GetParam();
   std::cout << "models/" << GetParam() << ": the largest relative action difference over " << kSteps << " observations is " << gap << "\n";
@@ -157,7 +148,7 @@ TEST(Runtime, AGruPolicyAndItsValueActAsLibTorchsAfterTraining) {
   Eigen::MatrixXd inputs(200, skill->input_size());
   for (Eigen::Index i = 0; i < inputs.size(); ++i) inputs.data()[i] = normal(rng);
   inputs += trainer.impl().obs_norm.mean().transpose().replicate(inputs.rows(), 1);
-  EXPECT_LT(relative_gap(skill->act(inputs), libtorch_actions(trainer, inputs)), kTolerance);
+  EXPECT_LT(relative_gap(skill->act(inputs), libtorch_policy_actions(trainer, inputs)), kTolerance);
   torch::NoGradGuard no_grad;
   const Eigen::MatrixXf x = trainer.impl().obs_norm.normalize(inputs).cast<float>();
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = x;
@@ -172,7 +163,7 @@ TEST(Runtime, BeforeAnyStatisticsTheNormaliserIsTheIdentity) {
   const auto skill = Skill::load(runtime_copy(trainer, text, "fresh"));
   EXPECT_FALSE(skill->impl().normalise);
   const Eigen::MatrixXd inputs = Eigen::MatrixXd::Random(5, skill->input_size()) * 30.0;
-  EXPECT_LT(relative_gap(skill->act(inputs), libtorch_actions(trainer, inputs)), kTolerance);
+  EXPECT_LT(relative_gap(skill->act(inputs), libtorch_policy_actions(trainer, inputs)), kTolerance);
 }
 
 }  // namespace
