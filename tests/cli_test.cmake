@@ -55,7 +55,7 @@ expect_in("${LAST_OUT}" "jumping_jack")
 expect_in("${LAST_OUT}" "learning    jumping_jack tracked after 4096 samples: imitation error ")
 # With ../shared beside the source, the demo also evaluates the shipped walk policy: it must stay up.
 if(EXISTS ${SRC}/../shared/data/deepmimic/motions/humanoid3d_walk.txt AND NOT DEFINED ENV{MIMIC_DATA})
-  string(REGEX MATCH "pretrained  humanoid_walk_tracking: imitation error [^\n]*" walk_line "${LAST_OUT}")
+  string(REGEX MATCH "pretrained  humanoid_walk_iccgan: imitation error [^\n]*" walk_line "${LAST_OUT}")
   expect_in("${walk_line}" ", 0 of 10 down (0 fell)")
 else()
   message(STATUS "../shared/data absent (or MIMIC_DATA set): the pretrained walk's check is skipped")

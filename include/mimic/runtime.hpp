@@ -56,6 +56,15 @@ class Skill {
   // The same in float32 row-major, without conversions (benchmarks, batched games). `inputs`
   // is [batch, input_size()] row-major; returns [batch, action_size()] row-major.
   std::vector<float> act_floats(const float* inputs, int batch) const;
+  // The discriminators the skill learnt against (its adversarial reward sources: seed 000's GAIL,
+  // seed 004's ensemble), by source name; empty for a skill trained on another reward.
+  std::vector<std::string> discriminators() const;
+  // How expert-like discriminator `source` finds transitions: its reward for each row of
+  // (observation frame without a behaviour context, the next frame, the action), under behaviour
+  // context `context` (-1 for a skill without contexts). Seed 004 switches skills by these
+  // scores. Throws mimic::Error for an unknown source, a missing context or rows that do not fit.
+  Eigen::VectorXd score(const std::string& source, const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions,
+                        int context = -1) const;
 
   const Impl& impl() const { return *impl_; }
 

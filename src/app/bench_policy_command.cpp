@@ -59,7 +59,7 @@ void add_bench_policy_command(CLI::App& bench) {
   cmd->add_option("--seconds", args->seconds, "seconds each figure is timed over")->capture_default_str()->check(CLI::Range(0.01, 3600.0));
   cmd->callback([args] {
     const std::shared_ptr<const Skill> skill = Skill::load(args->model);
-    const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args->model);
+    const std::unique_ptr<Trainer> trainer = Trainer::from_run(args->model);
     spdlog::info("{}: policy of {} parameters, {} inputs -> {} actions", skill->name(), skill->policy_parameters(), skill->input_size(),
                  skill->action_size());
     const Eigen::MatrixXd inputs = own_inputs(skill, 1024);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/run_skill.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
@@ -119,24 +120,23 @@ void add_distill_command(CLI::App& app) {
       progress = read_progress({});
     }
     // Teacher k sees the student's frame without the one-hot.
-    const std::optional<ObservationSlice> context = context_slice(student.make_env()->observation_layout());
+    const std::optional<ObservationSlice> context = context_slice(student.observation_layout());
     const int context_width = context ? context->size : 0;
     if (static_cast<int>(args->teachers.size()) != std::max(context_width, 1))
       throw Error(std::to_string(args->teachers.size()) + " teachers for " + source + "'s " +
                   (context_width ? std::to_string(context_width) + " behaviour contexts: give one --teacher per context, in context order"
                                  : std::string("environment without behaviour contexts: give one --teacher (or add env.context)")));
-    std::vector<std::unique_ptr<Trainer>> teachers;
+    // The teachers act on the runtime (control/), as exported.
     std::vector<PolicyFunction> acts;
     for (const auto& path : args->teachers) {
-      teachers.push_back(Trainer::load_policy(path));
-      const Trainer& t = *teachers.back();
-      if (t.config().policy.net.history != 1) throw Error(path.string() + ": a teacher must see one frame (policy.history: 1)");
-      if (t.input_size() != student.input_size() - context_width || t.action_size() != student.action_size())
-        throw Error(path.string() + ": the teacher takes " + std::to_string(t.input_size()) + " observation values and gives " +
-                    std::to_string(t.action_size()) + " actions; the student's environment (" + source + ") has " +
+      const std::shared_ptr<const Skill> t = run_skill(path);
+      if (t->history() != 1) throw Error(path.string() + ": a teacher must see one frame (policy.history: 1)");
+      if (t->input_size() != student.input_size() - context_width || t->action_size() != student.action_size())
+        throw Error(path.string() + ": the teacher takes " + std::to_string(t->input_size()) + " observation values and gives " +
+                    std::to_string(t->action_size()) + " actions; the student's environment (" + source + ") has " +
                     std::to_string(student.input_size() - context_width) + " without its context and " +
                     std::to_string(student.action_size()) + " actions");
-      acts.push_back([&t](const Eigen::VectorXd& input) { return t.act(input); });
+      acts.push_back([t](const Eigen::VectorXd& input) { return t->act(input); });
     }
     std::filesystem::create_directories(args->out);
     if (!args->resume) write_file_atomic(args->out / "config.yaml", "# mimic distill: the student's config, learnt from its teachers\n" + text);

@@ -20,9 +20,10 @@
 #include "env/env_factory.hpp"
 #include "learn/context_switch.hpp"
 #include "learn/imitation_eval.hpp"
-#include "learn/runtime_cost.hpp"
-#include "learn/trainer.hpp"
+#include "learn/train_config.hpp"
 #include "app/run_skill.hpp"
+#include "control/episodes.hpp"
+#include "control/runtime_cost.hpp"
 #include "control/skill_impl.hpp"
 
 namespace mimic::app {
@@ -112,7 +113,7 @@ std::vector<std::string> with_settings(const EvalArgs& args, const std::vector<s
 }
 
 // Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
-std::string robustness(const EvalArgs& args, const Trainer& trainer) {
+std::string robustness(const EvalArgs& args, const RunNetworks& networks) {
   const int max_frames = static_cast<int>(std::lround(args.robustness_seconds * 30.0));
   spdlog::info("  robustness      cubes of 0.2 m at 0.2 m/s at the torso every frame; {} trials per mass, at most {} frames; "
                "failure: lying on the ground 10 frames",
@@ -120,11 +121,10 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   std::string json = ", \"robustness\": [";
   for (std::size_t i = 0; i < args.masses.size(); ++i) {
     const double mass = args.masses[i];
-    const std::shared_ptr<const Skill> skill =
-        run_skill(args.run,
-                  with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
-                                       fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)}),
-                  &trainer);
+    const std::shared_ptr<const Skill> skill = load_skill(
+        args.run, networks.bytes, networks.source, "",
+        with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
+                             fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)}));
     const std::unique_ptr<Env> env = make_skill_env(*skill);
     CharacterEnv* character = character_of(*env);
     if (!character) throw Error(args.run.string() + ": robustness needs a character environment");
@@ -140,32 +140,34 @@ std::string robustness(const EvalArgs& args, const Trainer& trainer) {
   return json + "]";
 }
 
-// Seed 004 Table 4's runtime cost: one policy forward pass at batch 1 (input normalisation and
-// the mean action included) and, for an adversarial run, one discriminator reward at batch 1;
-// medians of 2,000 passes on this machine's core.
-std::string latency(const EvalArgs& args, const Trainer& trainer) {
-  const RuntimeCost policy = policy_cost(trainer);
+// Seed 004 Table 4's runtime cost, on the runtime (what a program embedding the skill pays): one
+// policy forward pass at batch 1 (input normalisation and the mean action included) and one
+// reward of each discriminator at batch 1; medians of 2,000 passes on this machine's core.
+std::string latency(const EvalArgs& args, const std::shared_ptr<const Skill>& acting) {
+  std::shared_ptr<const Skill> skill = acting;
+  if (skill->discriminators().empty()) {
+    const std::filesystem::path config = args.run / "config.yaml";
+    const TrainConfig cfg = parse_train_config(read_text_file(config), config.string());
+    if (std::any_of(cfg.rewards.begin(), cfg.rewards.end(), [](const RewardSourceConfig& r) { return r.source != "env"; })) {
+      try {
+        skill = run_skill(args.run, args.settings, /*discriminators=*/true);
+      } catch (const Error& e) {  // the policy's figures stand; say why the discriminators' are missing
+        spdlog::warn("  latency         discriminator not measured: {}", e.what());
+      }
+    }
+  }
+  const RuntimeCost policy = policy_cost(*skill);
   spdlog::info("  latency         policy forward pass at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", policy.microseconds,
                policy.parameters, policy.megabytes());
   std::string json = fmt::format(", \"latency\": {{\"policy_us\": {}, \"policy_parameters\": {}, \"discriminators\": [", policy.microseconds,
                                  policy.parameters);
-  const std::filesystem::path config = args.run / "config.yaml";
-  const TrainConfig cfg = parse_train_config(read_text_file(config), config.string());
-  const bool adversarial = std::any_of(cfg.rewards.begin(), cfg.rewards.end(), [](const RewardSourceConfig& r) { return r.source != "env"; });
-  if (adversarial) {
-    try {
-      const std::unique_ptr<Trainer> full = Trainer::load_policy(args.run, true, args.settings);
-      const std::vector<RuntimeCost> costs = discriminator_costs(*full);
-      for (std::size_t i = 0; i < costs.size(); ++i) {
-        const RuntimeCost& c = costs[i];
-        spdlog::info("  latency         {} discriminator reward at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", c.name,
-                     c.microseconds, c.parameters, c.megabytes());
-        json += fmt::format("{}{{\"source\": {}, \"us\": {}, \"parameters\": {}}}", i ? ", " : "", json_string(c.name), c.microseconds,
-                            c.parameters);
-      }
-    } catch (const Error& e) {  // the policy's figures stand; say why the discriminator's are missing
-      spdlog::warn("  latency         discriminator not measured: {}", e.what());
-    }
+  const std::vector<RuntimeCost> costs = discriminator_costs(*skill);
+  for (std::size_t i = 0; i < costs.size(); ++i) {
+    const RuntimeCost& c = costs[i];
+    spdlog::info("  latency         {} discriminator reward at batch 1: {:.0f} us median; {} parameters ({:.2f} MB as float32)", c.name,
+                 c.microseconds, c.parameters, c.megabytes());
+    json += fmt::format("{}{{\"source\": {}, \"us\": {}, \"parameters\": {}}}", i ? ", " : "", json_string(c.name), c.microseconds,
+                        c.parameters);
   }
   return json + "]}";
 }
@@ -215,8 +217,14 @@ void evaluate(const EvalArgs& args) {
   for (const std::string& setting : args.settings)
     if (setting.rfind("env.", 0) != 0)
       throw Error("--set " + setting + ": eval overrides environment keys only (env.KEY=VALUE, e.g. env.max_seconds=30)");
-  const std::unique_ptr<Trainer> trainer = Trainer::load_policy(args.run, false, args.settings);
-  const EpisodeStats s = trainer->run_episodes(args.episodes, args.seed, !args.stochastic);
+  const RunNetworks networks = run_networks(args.run);
+  const std::shared_ptr<const Skill> skill = load_skill(args.run, networks.bytes, networks.source, "", args.settings);
+  // The episodes training would have evaluated (control/episodes.hpp).
+  EpisodeOptions episodes = training_episodes(args.run);
+  episodes.episodes = args.episodes, episodes.seed = args.seed, episodes.deterministic = !args.stochastic;
+  std::mt19937_64 noise(args.seed);
+  EpisodeStats s;
+  (void)run_episodes(*skill, episodes, noise, s);
   const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
   // Episodes ended by a failure: a fall, or a tracking env's max_drift (the JSON's key predates it).
   const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
@@ -234,9 +242,8 @@ void evaluate(const EvalArgs& args) {
 
   // Imitation: a character environment and a clip to compare with. A behaviour-context env is
   // measured through the env it wraps, the policy's input given the held context's one-hot.
-  // Imitation, robustness and switches run the torch-free runtime (docs/runtime.md), as an
-  // embedding program would: the same networks, to within 1.2e-6 of LibTorch's actions.
-  const std::shared_ptr<const Skill> skill = run_skill(args.run, args.settings, trainer.get());
+  // Every measurement runs the torch-free runtime (docs/runtime.md), as an embedding program
+  // would: the same networks, to within 1.2e-6 of LibTorch's actions.
   const std::unique_ptr<Env> env = make_skill_env(*skill);
   CharacterEnv* character = character_of(*env);
   const bool contexts = dynamic_cast<ContextEnv*>(env.get()) != nullptr;
@@ -281,9 +288,9 @@ void evaluate(const EvalArgs& args) {
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
-  if (!args.masses.empty()) json += robustness(args, *trainer);
+  if (!args.masses.empty()) json += robustness(args, networks);
   if (!args.switches.empty()) json += context_switches(args, skill);
-  if (args.latency) json += latency(args, *trainer);
+  if (args.latency) json += latency(args, skill);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 

@@ -13,6 +13,8 @@
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
 #include "env/env_factory.hpp"
+#include "app/run_skill.hpp"
+#include "control/skill_impl.hpp"
 #include "learn/clip_demonstrations.hpp"
 #include "learn/trainer.hpp"
 #include "motion/clip_io.hpp"
@@ -35,11 +37,17 @@ void add_imitation_commands(CLI::App& app) {
   cmd->add_flag("--deterministic", args->deterministic, "act with the policy's mean instead of sampling (default: sample, as seed 002)");
   cmd->add_option("--seed", args->seed, "random seed (initial states, action noise, sub-sampling offsets)")->capture_default_str();
   cmd->callback([args] {
-    std::vector<double> returns;
-    const Demonstrations d = Trainer::load_policy(args->run)->record(args->episodes, args->every, args->deterministic, args->seed, &returns);
+    // The runtime's episodes, as training would have run them (control/episodes.hpp).
+    const std::shared_ptr<const Skill> skill = run_skill(args->run);
+    EpisodeOptions o = training_episodes(args->run);
+    o.episodes = args->episodes, o.seed = args->seed, o.deterministic = args->deterministic;
+    std::mt19937_64 rng(args->seed);  // action noise, then the sub-sampling offsets
+    EpisodeStats stats;
+    const Rollout episodes = run_episodes(*skill, o, rng, stats);
+    const Demonstrations d = demonstrations_of(episodes, skill->impl().layout, args->every, rng);
     write_demonstrations(args->out, d);
     spdlog::info("wrote {}: {} samples from {} episodes (every {} steps), mean episode return {:.1f}", args->out.string(), d.size(),
-                 d.episodes(), args->every, mean_of(returns));
+                 d.episodes(), args->every, mean_of(stats.returns));
   });
 
   struct ClipArgs {
@@ -129,20 +137,28 @@ void add_imitation_commands(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   sc->add_option("--json", score->json, "also write the scores as JSON");
   sc->callback([score] {
-    const std::unique_ptr<Trainer> trainer = Trainer::load_policy(score->run, true);
+    const std::shared_ptr<const Skill> skill = run_skill(score->run, {}, /*discriminators=*/true);
+    if (skill->discriminators().empty())
+      throw Error(score->run.string() + ": this run has no discriminator (rewards with source gail or iccgan) to score with");
     const Demonstrations d = read_demonstrations(score->demos);
+    // The run's own observation without its context: what record-clip and record write.
+    const std::unique_ptr<Env> env = make_skill_env(*skill);
+    const auto* contexts_env = dynamic_cast<const ContextEnv*>(env.get());
+    const int own = skill->frame_size() - (contexts_env ? contexts_env->contexts() : 0);
+    if (d.obs.cols() != own)
+      throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values, this run's environment " +
+                  std::to_string(own) + " (without its context)");
     std::vector<int> contexts{score->context};
-    if (score->context < 0) {
-      const std::unique_ptr<Env> env = trainer->make_env();
-      if (const auto* c = dynamic_cast<const ContextEnv*>(env.get())) {
-        contexts.clear();
-        for (int k = 0; k < c->contexts(); ++k) contexts.push_back(k);
-      }
+    if (score->context < 0 && contexts_env) {
+      contexts.clear();
+      for (int k = 0; k < contexts_env->contexts(); ++k) contexts.push_back(k);
     }
     spdlog::info("{}: {} transitions scored by {}", d.source, d.size(), score->run.string());
     std::string rows;
     for (int context : contexts) {
-      for (const auto& [source, values] : trainer->discriminator_scores(d, context)) {
+      for (const std::string& source : skill->discriminators()) {
+        const Eigen::VectorXd scores = skill->score(source, d.obs, d.next_obs, d.action, context);
+        const std::vector<double> values(scores.begin(), scores.end());
         const double mean = mean_of(values), sd = std_of(values);
         const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
         spdlog::info("  {:<10} {:<11} reward {:.3f} +- {:.3f} (min {:.3f}, max {:.3f})", source,

@@ -12,7 +12,6 @@
 #include "learn/frame_history.hpp"
 #include "app/run_skill.hpp"
 #include "control/skill_impl.hpp"
-#include "learn/trainer.hpp"
 #include "render/offscreen.hpp"
 #include "render/video_writer.hpp"
 
@@ -26,11 +25,6 @@ PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std
   } catch (const Error& e) {
     throw Error(run.string() + ": " + e.what());
   }
-}
-
-PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
-  const std::unique_ptr<Env> env = trainer.make_env();
-  return render_policy_video(*env, [&trainer](const Eigen::VectorXd& x) { return trainer.act(x); }, trainer.config().policy.net.history, out, opts);
 }
 
 PolicyVideoStats render_policy_video(Env& env_ref, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& act, int history,

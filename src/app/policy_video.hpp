@@ -7,10 +7,6 @@
 #include "env/env.hpp"
 #include "render/offscreen.hpp"
 
-namespace mimic {
-class Trainer;
-}
-
 namespace mimic::app {
 
 struct PolicyVideoOptions {
@@ -35,8 +31,6 @@ struct PolicyVideoStats {
 // Plays a run or model directory's policy deterministically (mean actions) on the torch-free
 // runtime (app/run_skill.hpp) and writes `out` (.mp4/.gif).
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts);
-// The same for a trainer in memory (its environments and current policy).
-PolicyVideoStats render_policy_video(const Trainer& trainer, const std::filesystem::path& out, const PolicyVideoOptions& opts);
 // Any policy: `act` maps `history` stacked observations of `env` (oldest first) to an action.
 PolicyVideoStats render_policy_video(Env& env, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& act, int history,
                                      const std::filesystem::path& out, const PolicyVideoOptions& opts);

@@ -159,7 +159,14 @@ void add_train_commands(CLI::App& app) {
       ->excludes("--policy-from");
   export_cmd->callback([exp] {
     if (exp->networks_only) {
-      const std::unique_ptr<Trainer> trainer = Trainer::load_policy(exp->run);
+      // With the discriminators where their expert files are found (scores, switching by score).
+      std::unique_ptr<Trainer> trainer;
+      try {
+        trainer = Trainer::from_run(exp->run, true);
+      } catch (const Error& e) {
+        trainer = Trainer::from_run(exp->run);
+        spdlog::warn("{}: the networks are written without the discriminators: {}", exp->run.string(), e.what());
+      }
       std::filesystem::create_directories(exp->out);
       trainer->write_runtime_networks(exp->out / kRuntimeFileName);
       spdlog::info("wrote {} ({:.2f} MB), iteration {}", (exp->out / kRuntimeFileName).string(),
@@ -169,7 +176,7 @@ void add_train_commands(CLI::App& app) {
     if (std::filesystem::exists(exp->out / "checkpoint.pt"))
       throw Error(exp->out.string() + " already holds a checkpoint.pt: choose another directory or remove it");
     // With its reward sources, so that the discriminators' scores stay available to the model.
-    const std::unique_ptr<Trainer> trainer = Trainer::load_policy(exp->run, true);
+    const std::unique_ptr<Trainer> trainer = Trainer::from_run(exp->run, true);
     if (exp->average_last > 0) {
       std::vector<std::filesystem::path> before;
       for (const auto& [iteration, path] : Trainer::policy_snapshots(exp->run))

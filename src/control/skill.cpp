@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <sstream>
 
 #include "control/skill_impl.hpp"
@@ -95,6 +96,9 @@ std::unique_ptr<Skill::Impl> read_skill_networks(std::string_view bytes, const s
   s->log_std = Eigen::Map<const Eigen::VectorXf>(log_std.data(), s->action_size);
   s->value = Network::read(t, "value.net", input, s->history, activation_of(t, "value.activation"));
   if (s->value.output_size() != 1) t.fail("the value network's last layer gives " + std::to_string(s->value.output_size()) + " values, not 1");
+  // Files written before the runtime held discriminators have none.
+  const int discriminators = t.has("discriminator.count") ? t.count("discriminator.count", 0, 1024) : 0;
+  for (int i = 0; i < discriminators; ++i) s->discriminators.push_back(SkillDiscriminator::read(t, i, s->frame_size, s->action_size));
   return s;
 }
 
@@ -124,34 +128,41 @@ std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, 
   const std::filesystem::path config = model_dir / "config.yaml";
   for (const std::string& setting : env_settings)
     if (setting.rfind("env.", 0) != 0) throw Error("setting '" + setting + "': a skill's environment takes env keys only (env.KEY=VALUE)");
-  std::unique_ptr<Skill::Impl> s = read_skill_networks(networks_bytes, networks);
-  s->dir = model_dir;
-  s->name = !name.empty() ? name : std::filesystem::absolute(model_dir).lexically_normal().filename().string();
-  if (s->name.empty()) s->name = std::filesystem::absolute(model_dir).lexically_normal().parent_path().filename().string();
+  std::string skill_name = name;
+  if (skill_name.empty()) skill_name = std::filesystem::absolute(model_dir).lexically_normal().filename().string();
+  if (skill_name.empty()) skill_name = std::filesystem::absolute(model_dir).lexically_normal().parent_path().filename().string();
   const YamlReader reader(config.string());
   const YAML::Node root =
       reader.parse(override_config(read_text_file(config, kMaxYamlBytes), config.string(), env_settings), "invalid YAML");
   if (!root.IsMap() || !root["env"].IsDefined()) throw Error(config.string() + ": no 'env' section: the environment the skill acts in");
-  s->factory = make_env_factory(root["env"], reader);
-  // The networks must fit the environment the config builds (a config edited after export, or
-  // networks copied from another model, would act on the wrong observation).
+  return skill_in(make_env_factory(root["env"], reader), networks_bytes, networks, skill_name, model_dir, config.string() + "'s environment",
+                  " (a config.yaml that is not the one the networks were exported with?)");
+}
+
+std::shared_ptr<const Skill> skill_in(EnvFactory factory, std::string_view networks_bytes, const std::filesystem::path& networks,
+                                      const std::string& name, const std::filesystem::path& dir, const std::string& environment,
+                                      const std::string& hint) {
+  std::unique_ptr<Skill::Impl> s = read_skill_networks(networks_bytes, networks);
+  s->dir = dir;
+  s->name = name;
+  s->factory = std::move(factory);
+  // The networks must fit the environment (a config edited after export, or networks copied
+  // from another model, would act on the wrong observation).
   const std::unique_ptr<Env> probe = s->factory();
-  auto differs = [&](const std::string& what) {
-    throw Error(networks.string() + ": " + what + " (a config.yaml that is not the one the networks were exported with?)");
-  };
+  auto differs = [&](const std::string& what) { throw Error(networks.string() + ": " + what + hint); };
   if (probe->observation_size() != s->frame_size || probe->action_size() != s->action_size)
     differs("the networks take observations of " + std::to_string(s->frame_size) + " values and give " + std::to_string(s->action_size) +
-            " actions; " + config.string() + "'s environment has " + std::to_string(probe->observation_size()) + " and " +
+            " actions; " + environment + " has " + std::to_string(probe->observation_size()) + " and " +
             std::to_string(probe->action_size()));
   const std::vector<ObservationSlice> layout = probe->observation_layout();
   bool same_layout = layout.size() == s->layout.size();
   for (std::size_t i = 0; same_layout && i < layout.size(); ++i)
     same_layout = layout[i].name == s->layout[i].name && layout[i].size == s->layout[i].size;
-  if (!same_layout) differs("the networks observe " + layout_text(s->layout) + "; " + config.string() + "'s environment " + layout_text(layout));
+  if (!same_layout) differs("the networks observe " + layout_text(s->layout) + "; " + environment + " " + layout_text(layout));
   const std::vector<std::string> bodies = character_body_names(probe->physics_model());
   if (bodies != s->bodies)
     differs("the networks were trained on a character of " + std::to_string(s->bodies.size()) + " bodies" +
-            (s->bodies.empty() ? "" : " (" + s->bodies.front() + " ...)") + "; " + config.string() + "'s has " + std::to_string(bodies.size()) +
+            (s->bodies.empty() ? "" : " (" + s->bodies.front() + " ...)") + "; " + environment + "'s has " + std::to_string(bodies.size()) +
             (bodies.empty() ? "" : " (" + bodies.front() + " ...)"));
   return std::make_shared<const Skill>(std::move(s));
 }
@@ -169,6 +180,33 @@ Eigen::MatrixXd Skill::act(const Eigen::MatrixXd& inputs) const { return impl_->
 Eigen::VectorXd Skill::act(const Eigen::VectorXd& input) const { return act(Eigen::MatrixXd(input.transpose())).transpose(); }
 
 Eigen::VectorXd Skill::value(const Eigen::MatrixXd& inputs) const { return impl_->value.forward(impl_->normalised(inputs)).col(0).cast<double>(); }
+
+std::vector<std::string> Skill::discriminators() const {
+  std::vector<std::string> names;
+  for (const SkillDiscriminator& d : impl_->discriminators)
+    if (std::find(names.begin(), names.end(), d.source) == names.end()) names.push_back(d.source);
+  return names;
+}
+
+Eigen::VectorXd Skill::score(const std::string& source, const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions,
+                             int context) const {
+  const SkillDiscriminator* found = nullptr;
+  int parts = 0;
+  for (const SkillDiscriminator& d : impl_->discriminators) {
+    if (d.source != source) continue;
+    if (d.context < 0) found = &d;
+    else if (++parts, d.context == context) found = &d;
+  }
+  if (parts > 0 && !found)
+    throw Error(impl_->name + ": " + source + " has one discriminator per behaviour context: give a context 0 to " + std::to_string(parts - 1));
+  if (!found) {
+    std::string known;
+    for (const std::string& n : discriminators()) known += (known.empty() ? "" : ", ") + n;
+    throw Error(impl_->name + ": no discriminator '" + source + "' (" + (known.empty() ? "the skill has none: " + impl_->dir.string() + "/" +
+                kRuntimeFileName + " was exported without them, or it learnt from no adversarial reward" : "it has " + known) + ")");
+  }
+  return found->rewards(obs, next_obs, actions, found->context >= 0 ? -1 : context);
+}
 
 std::vector<float> Skill::act_floats(const float* inputs, int batch) const {
   if (batch < 1 || inputs == nullptr) throw Error(impl_->name + ": act_floats needs a batch of at least one input");

@@ -2,6 +2,7 @@
 // A Skill's constant parts (include/mimic/runtime.hpp), visible to the control layer and its tests.
 #include <filesystem>
 
+#include "control/discriminator.hpp"
 #include "control/network.hpp"
 #include "env/env_factory.hpp"
 #include "learn/runtime_format.hpp"
@@ -22,6 +23,7 @@ struct Skill::Impl {
   double clip = 0.0;
   Network policy, value;
   Eigen::VectorXf log_std;
+  std::vector<SkillDiscriminator> discriminators;  // in the config's order of reward sources
   double iteration = 0, samples = 0;
 
   // Normalised inputs as float32 rows (the networks' input).
@@ -35,6 +37,12 @@ struct Skill::Impl {
 std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, std::string_view networks_bytes,
                                         const std::filesystem::path& networks, const std::string& name,
                                         const std::vector<std::string>& env_settings);
+// A skill acting in environments of `factory` (a program's own, as TrainOptions::env_factory) with
+// the networks of `networks_bytes` (named `networks` in errors), which must fit them: errors name
+// the environment as `environment` and end with `hint`. `dir` is what directory() gives.
+std::shared_ptr<const Skill> skill_in(EnvFactory factory, std::string_view networks_bytes, const std::filesystem::path& networks,
+                                      const std::string& name, const std::filesystem::path& dir = {},
+                                      const std::string& environment = "the environment", const std::string& hint = "");
 // A new environment of the skill's (its config's env, settings applied).
 inline std::unique_ptr<Env> make_skill_env(const Skill& s) { return s.impl().factory(); }
 

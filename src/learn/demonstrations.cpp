@@ -165,4 +165,33 @@ void write_demonstrations(const std::filesystem::path& path, const Demonstration
   write_file_atomic(path, out);
 }
 
+Demonstrations demonstrations_of(const Rollout& r, std::vector<ObservationSlice> layout, int every, std::mt19937_64& rng) {
+  if (every < 1) throw Error("demonstrations: every must be >= 1");
+  std::vector<std::pair<int, int>> kept;  // (sample, episode)
+  int episode = 0;
+  std::uniform_int_distribution<int> offset_of(0, every - 1);
+  for (const auto& steps : r.env_steps) {
+    int t = 0, offset = offset_of(rng);
+    for (int i : steps) {
+      if (t % every == offset) kept.emplace_back(i, episode);
+      ++t;
+      if (r.ended[static_cast<std::size_t>(i)]) ++episode, t = 0, offset = offset_of(rng);
+    }
+  }
+  Demonstrations d;
+  d.layout = std::move(layout);
+  const auto n = static_cast<Eigen::Index>(kept.size());
+  d.obs.resize(n, r.frame_size);
+  d.next_obs.resize(n, r.frame_size);
+  d.action.resize(n, r.action_size);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto [i, e] = kept[static_cast<std::size_t>(k)];
+    d.obs.row(k) = r.frame(i).transpose();
+    d.next_obs.row(k) = r.next_frame(i).transpose();
+    d.action.row(k) = r.action_of(i).cast<double>().transpose();
+    d.episode.push_back(e);
+  }
+  return d;
+}
+
 }  // namespace mimic

@@ -7,10 +7,12 @@
 // Torch-free.
 #include <Eigen/Core>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "env/env.hpp"
+#include "learn/rollout.hpp"
 
 namespace mimic {
 
@@ -28,6 +30,11 @@ struct Demonstrations {
   // file). Error when the column counts or the layouts differ.
   void append(const Demonstrations& more);
 };
+
+// Demonstrations from whole episodes (a collector's or the runtime's, run_episodes): every
+// `every`-th step of each episode from an offset drawn from `rng` per episode (seed 002:
+// sub-sampled every 20 steps), environment by environment; the observation without its history.
+Demonstrations demonstrations_of(const Rollout& episodes, std::vector<ObservationSlice> layout, int every, std::mt19937_64& rng);
 
 // Errors (ParseError) name the file, the line and the problem: a missing column group, sizes
 // that disagree, a cell that is not a finite number, no samples, a layout outside the observation.

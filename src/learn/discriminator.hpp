@@ -103,6 +103,10 @@ class Discriminator {
   DiscriminatorStats update(const torch::Tensor& policy);
 
   FeatureNet& net() { return net_; }
+  const FeatureNet& net() const { return net_; }
+  // The standardisation of its inputs: (x - mean) / std, each [input].
+  const torch::Tensor& input_mean() const { return mean_; }
+  const torch::Tensor& input_std() const { return std_; }
   // update() polls it between minibatches and throws Interrupted once it returns true.
   void set_interrupt(std::function<bool()> interrupted) { interrupted_ = std::move(interrupted); }
   // TrainingDiverged naming the first weight that is NaN, infinite or exploded.

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "env/context_env.hpp"
+#include "learn/trainer_impl.hpp"
 
 namespace mimic {
 
@@ -60,14 +61,14 @@ void distill(Trainer& student, const std::vector<PolicyFunction>& teachers, cons
              const std::function<bool(const DistillRound&)>& after_round) {
   if (o.rounds < 1 || o.episodes < 1 || o.keep < 1 || o.epochs < 1 || o.batch < 1 || !(o.lr > 0) || o.first_round < 1)
     throw Error("distillation: rounds, episodes, keep, epochs, batch and learning rate must be positive");
-  const std::vector<ObservationSlice> layout = student.make_env()->observation_layout();
+  const std::vector<ObservationSlice>& layout = student.observation_layout();
   Demonstrations kept;
   long long samples = o.samples_before;
   for (int round = o.first_round; round <= o.rounds; ++round) {
     // The student's own states (sampled actions: DAgger's on-policy distribution, widened by its noise).
     const std::uint64_t seed = o.seed * 1'000'003 + static_cast<std::uint64_t>(round);
     EpisodeStats stats;
-    const Demonstrations visited = student.record(o.episodes, 1, /*deterministic=*/false, seed, nullptr, &stats);
+    const Demonstrations visited = impl_of(student).record(o.episodes, /*deterministic=*/false, seed, stats);
     samples += visited.size();
     kept.append(label_by_teachers(visited, layout, teachers));
     keep_newest(kept, o.keep);

@@ -18,10 +18,10 @@ Eigen::MatrixXd mean_actions(Trainer::Impl& t, const Eigen::MatrixXd& inputs) {
 
 }  // namespace
 
-Eigen::MatrixXd libtorch_policy_actions(Trainer& trainer, const Eigen::MatrixXd& inputs) { return mean_actions(trainer.impl(), inputs); }
+Eigen::MatrixXd libtorch_policy_actions(Trainer& trainer, const Eigen::MatrixXd& inputs) { return mean_actions(impl_of(trainer), inputs); }
 
 double libtorch_policy_microseconds(Trainer& trainer, const Eigen::MatrixXd& inputs, int batch, double seconds) {
-  return microseconds_per_batch(inputs, batch, seconds, [&](const Eigen::MatrixXd& b) { return mean_actions(trainer.impl(), b); });
+  return microseconds_per_batch(inputs, batch, seconds, [&](const Eigen::MatrixXd& b) { return mean_actions(impl_of(trainer), b); });
 }
 
 }  // namespace mimic

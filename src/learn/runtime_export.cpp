@@ -2,6 +2,8 @@
 
 
 #include "core/file_io.hpp"
+#include "learn/adversarial_reward.hpp"
+#include "learn/per_context_reward.hpp"
 #include "sim/mujoco_load.hpp"
 
 namespace mimic {
@@ -19,6 +21,37 @@ void add_network(std::vector<NamedArray>& out, const std::string& prefix, const 
 }
 
 std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+std::vector<float> floats_of(const torch::Tensor& t) {
+  const torch::Tensor c = t.detach().to(torch::kFloat32).contiguous();
+  return {c.data_ptr<float>(), c.data_ptr<float>() + c.numel()};
+}
+
+// One discriminator under "discriminator.<index>.": what it reads of a transition, how it
+// standardises it, its network and how its outputs become a reward (docs/runtime.md).
+void add_discriminator(std::vector<NamedArray>& out, int index, const std::string& source, int context, const AdversarialRewardSource& a) {
+  const std::string p = "discriminator." + std::to_string(index) + ".";
+  const TransitionFeatures& f = a.features();
+  const Discriminator& d = const_cast<AdversarialRewardSource&>(a).discriminator();
+  const DiscriminatorConfig& c = d.config();
+  out.push_back(NamedArray::of_text(p + "source", source));
+  out.push_back(NamedArray::of_scalar(p + "context", context));
+  out.push_back(NamedArray::of_text(p + "transition", f.transition));
+  std::vector<double> columns(f.columns.begin(), f.columns.end());
+  out.push_back(NamedArray::of_doubles(p + "columns", {static_cast<std::uint32_t>(columns.size())}, columns));
+  out.push_back(NamedArray::of_scalar(p + "contexts", f.contexts));
+  out.push_back(NamedArray::of_scalar(p + "context_offset", f.context_offset));
+  out.push_back(NamedArray::of_text(p + "loss", c.loss));
+  out.push_back(NamedArray::of_text(p + "reward", c.reward));
+  out.push_back(NamedArray::of_scalar(p + "reward_clip", c.reward_clip));
+  out.push_back(NamedArray::of_scalar(p + "reward_offset", c.reward_offset));
+  const auto width = static_cast<std::uint32_t>(d.input_size());
+  out.push_back(NamedArray::of_floats(p + "input_mean", {width}, floats_of(d.input_mean().reshape({-1}))));
+  out.push_back(NamedArray::of_floats(p + "input_std", {width}, floats_of(d.input_std().reshape({-1}))));
+  out.push_back(NamedArray::of_scalar(p + "history", c.net.history));
+  out.push_back(NamedArray::of_text(p + "activation", c.net.activation));
+  add_network(out, p + "net", *d.net());
+}
 
 }  // namespace
 
@@ -52,6 +85,17 @@ std::vector<NamedArray> runtime_arrays(const Trainer::Impl& t) {
   add_network(out, "policy", *t.learner->policy());
   out.push_back(NamedArray::of_text("value.activation", t.cfg.value.activation));
   add_network(out, "value", *t.learner->value());
+  // The discriminators of the adversarial reward sources, in the config's order (one per
+  // behaviour context where each context has its own); none where the run was loaded without them.
+  int discriminators = 0;
+  for (const auto& entry : t.rewards) {
+    RewardSource* r = entry.second.get();
+    if (auto* separate = dynamic_cast<PerContextRewardSource*>(r))
+      for (int k = 0; k < separate->contexts(); ++k) add_discriminator(out, discriminators++, separate->name(), k, separate->part(k));
+    else if (auto* adversarial = dynamic_cast<AdversarialRewardSource*>(r))
+      add_discriminator(out, discriminators++, adversarial->name(), -1, *adversarial);
+  }
+  out.push_back(NamedArray::of_scalar("discriminator.count", discriminators));
   return out;
 }
 

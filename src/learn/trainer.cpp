@@ -452,7 +452,7 @@ void Trainer::take_policy_from(const std::filesystem::path& checkpoint) {
   read_policy(*impl_, checkpoint_of(checkpoint));
 }
 
-std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, bool reward_sources, const std::vector<std::string>& settings) {
+std::unique_ptr<Trainer> Trainer::from_run(const std::filesystem::path& run, bool reward_sources, const std::vector<std::string>& settings) {
   const std::filesystem::path config = run / "config.yaml", checkpoint = run / "checkpoint.pt";
   if (!std::filesystem::exists(config) || !std::filesystem::exists(checkpoint))
     throw Error(run.string() + ": not a training run (needs config.yaml and checkpoint.pt)");
@@ -466,18 +466,7 @@ std::unique_ptr<Trainer> Trainer::load_policy(const std::filesystem::path& run, 
   return trainer;
 }
 
-std::unique_ptr<Env> Trainer::make_env() const { return impl_->factory(); }
-
-Eigen::VectorXd Trainer::act(const Eigen::VectorXd& input) const {
-  if (input.size() != impl_->collector->input_size())
-    throw Error("policy input has " + std::to_string(input.size()) + " values, expected " + std::to_string(impl_->collector->input_size()));
-  torch::NoGradGuard no_grad;
-  const Eigen::VectorXf x = impl_->obs_norm.normalize_one(input).cast<float>();
-  const torch::Tensor mean = impl_->learner->policy()->forward(torch::from_blob(const_cast<float*>(x.data()), {1, x.size()}, torch::kFloat32)).first.contiguous();
-  return Eigen::Map<const Eigen::VectorXf>(mean.data_ptr<float>(), mean.size(1)).cast<double>();
-}
-
-double Trainer::evaluate(int episodes, std::uint64_t seed) { return mean_of(run_episodes(episodes, seed, true).returns); }
+const std::vector<ObservationSlice>& Trainer::observation_layout() const { return impl_->layout; }
 
 Rollout Trainer::Impl::side_episodes(int episodes, std::uint64_t seed, std::mt19937_64& rng, bool deterministic, EpisodeStats& stats) {
   Collector side(factory, std::min(episodes, cfg.collect.envs), cfg.collect.threads, cfg.policy.net.history, seed);
@@ -486,64 +475,10 @@ Rollout Trainer::Impl::side_episodes(int episodes, std::uint64_t seed, std::mt19
   return r;
 }
 
-EpisodeStats Trainer::run_episodes(int episodes, std::uint64_t seed, bool deterministic) {
-  EpisodeStats stats;
-  std::mt19937_64 rng(seed);
-  (void)impl_->side_episodes(episodes, seed, rng, deterministic, stats);
-  return stats;
-}
-
-Demonstrations Trainer::record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns,
-                               EpisodeStats* episode_stats) {
-  if (episodes < 1 || every < 1) throw Error("record: episodes and every must be >= 1");
-  const int frame = impl_->collector->input_size() / impl_->cfg.policy.net.history;
-  EpisodeStats stats;
+Demonstrations Trainer::Impl::record(int episodes, bool deterministic, std::uint64_t seed, EpisodeStats& stats) {
   std::mt19937_64 rng(seed);  // action noise, then the sub-sampling offsets
-  const Rollout r = impl_->side_episodes(episodes, seed, rng, deterministic, stats);
-  if (returns) *returns = stats.returns;
-  if (episode_stats) *episode_stats = stats;
-  std::vector<std::pair<int, int>> kept;  // (sample, episode)
-  int episode = 0;
-  std::uniform_int_distribution<int> offset_of(0, every - 1);
-  for (const auto& steps : r.env_steps) {
-    int t = 0, offset = offset_of(rng);
-    for (int i : steps) {
-      if (t % every == offset) kept.emplace_back(i, episode);
-      ++t;
-      if (r.ended[static_cast<std::size_t>(i)]) ++episode, t = 0, offset = offset_of(rng);
-    }
-  }
-  Demonstrations d;
-  d.layout = impl_->layout;
-  const auto n = static_cast<Eigen::Index>(kept.size());
-  d.obs.resize(n, frame);
-  d.next_obs.resize(n, frame);
-  d.action.resize(n, r.action_size);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const auto [i, e] = kept[static_cast<std::size_t>(k)];
-    d.obs.row(k) = r.frame(i).transpose();
-    d.next_obs.row(k) = r.next_frame(i).transpose();
-    d.action.row(k) = r.action_of(i).cast<double>().transpose();
-    d.episode.push_back(e);
-  }
-  return d;
-}
-
-std::vector<std::pair<std::string, std::vector<double>>> Trainer::discriminator_scores(const Demonstrations& d, int context) {
-  // The run's own observation without its context: what record-clip and record write.
-  const std::optional<ObservationSlice> one_hot = context_slice(impl_->layout);
-  const int own = impl_->collector->frame_size() - (one_hot ? one_hot->size : 0);
-  if (d.obs.cols() != own)
-    throw Error(d.source + ": demonstrations have " + std::to_string(d.obs.cols()) + " observation values, this run's environment " +
-                std::to_string(own) + " (without its context)");
-  std::vector<std::pair<std::string, std::vector<double>>> out;
-  for (auto& [weight, source] : impl_->rewards)
-    if (auto* adversarial = dynamic_cast<AdversarialRewardSource*>(source.get()))
-      out.emplace_back(adversarial->name(), adversarial->score(d, context));
-    else if (auto* separate = dynamic_cast<PerContextRewardSource*>(source.get()))
-      out.emplace_back(separate->name(), separate->score(d, context));
-  if (out.empty()) throw Error("this run has no discriminator (rewards with source gail or iccgan) to score with");
-  return out;
+  const Rollout r = side_episodes(episodes, seed, rng, deterministic, stats);
+  return demonstrations_of(r, layout, 1, rng);
 }
 
 }  // namespace mimic

@@ -108,47 +108,29 @@ class Trainer {
   // weights and normaliser, for averaging. The run's snapshots by iteration, oldest first.
   static std::filesystem::path snapshot_path(const std::filesystem::path& run, int iteration);
   static std::vector<std::pair<int, std::filesystem::path>> policy_snapshots(const std::filesystem::path& run);
-  // Mean environment return of `episodes` episodes acting with the policy's mean (no noise);
-  // uses its own environments and generator, so training is not disturbed.
-  double evaluate(int episodes, std::uint64_t seed = 12345);
-  // The same episodes with their returns, lengths and failures; sampled actions unless `deterministic`.
-  EpisodeStats run_episodes(int episodes, std::uint64_t seed, bool deterministic);
   // Behavioural cloning (the baseline of seed 002 A.2): the observation normaliser takes the
   // demonstrations' statistics and the policy mean regresses their actions (mean squared error,
   // Adam). Returns the final training loss. Needs a policy that sees one frame.
   double clone_behaviour(const Demonstrations& d, int epochs, double lr, int batch, std::uint64_t seed);
-  // Expert demonstrations: `episodes` episodes of the policy (sampled actions unless
-  // `deterministic`), keeping every `every`-th step of each from a random offset (seed 002:
-  // sub-sampled every 20 steps). `returns` receives each episode's environment return,
-  // `episode_stats` returns, lengths and falls.
-  Demonstrations record(int episodes, int every, bool deterministic, std::uint64_t seed, std::vector<double>* returns = nullptr,
-                        EpisodeStats* episode_stats = nullptr);
 
-  // The scores of the run's adversarial reward sources (gail, iccgan) on demonstrations `d`, by
-  // source name: each transition's reward under behaviour context `context` (-1 in a run without
-  // contexts). The discriminators must have been loaded (load_policy with reward_sources). Error
-  // when the run has none or `d` does not fit this run's observations.
-  std::vector<std::pair<std::string, std::vector<double>>> discriminator_scores(const Demonstrations& d, int context);
-
-  // Acting outside training (evaluation, videos, embedding): a new environment as the run trains
-  // in, and the policy's mean action for a raw policy input (`history` frames, oldest first).
-  std::unique_ptr<Env> make_env() const;
-  Eigen::VectorXd act(const Eigen::VectorXd& input) const;
+  // The environment's observation parts (names, offsets and sizes in one frame).
+  const std::vector<ObservationSlice>& observation_layout() const;
   // Trainable values of the policy network (its log-std included).
   long long policy_parameters() const;
 
-  // A trained policy from a run directory (config.yaml + checkpoint.pt), for acting only
-  // (evaluation, videos, recording): its reward sources are left out, so that a run whose
-  // discriminator read expert files elsewhere still loads; with `reward_sources` they are built
-  // and restored too (their expert files must be found). `settings` override the run's config as
-  // `mimic train --set` does (KEY.PATH=VALUE), in memory only. Error naming the run otherwise.
-  static std::unique_ptr<Trainer> load_policy(const std::filesystem::path& run, bool reward_sources = false,
-                                              const std::vector<std::string>& settings = {});
+  // A run from its directory (config.yaml + checkpoint.pt), to export it or convert its networks
+  // (acting is the runtime's: control/, include/mimic/runtime.hpp). Its reward sources are left
+  // out, so that a run whose discriminator read expert files elsewhere still loads; with
+  // `reward_sources` they are built and restored too (their expert files must be found).
+  // `settings` override the run's config as `mimic train --set` does (KEY.PATH=VALUE), in memory
+  // only. Error naming the run otherwise.
+  static std::unique_ptr<Trainer> from_run(const std::filesystem::path& run, bool reward_sources = false,
+                                           const std::vector<std::string>& settings = {});
 
   struct Impl;
-  Impl& impl() { return *impl_; }  // for tests and benchmarks that reach the networks
 
  private:
+  friend struct TrainerAccess;  // the learn layer's own (trainer_impl.hpp)
   std::unique_ptr<Impl> impl_;
 };
 

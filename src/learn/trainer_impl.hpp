@@ -54,7 +54,18 @@ struct Trainer::Impl {
   // environments and generators are not touched.
   // `seed` seeds the environments, `rng` draws the action noise.
   Rollout side_episodes(int episodes, std::uint64_t seed, std::mt19937_64& rng, bool deterministic, EpisodeStats& stats);
+  // Every step of `episodes` such episodes as demonstrations (a student's own states, for
+  // distillation), sampled actions unless `deterministic`; `seed` seeds starts and noise.
+  Demonstrations record(int episodes, bool deterministic, std::uint64_t seed, EpisodeStats& stats);
 };
+
+// The learn layer's way in to a trainer's state (the Trainer has no public one).
+struct TrainerAccess {
+  static Trainer::Impl& of(Trainer& t) { return *t.impl_; }
+  static const Trainer::Impl& of(const Trainer& t) { return *t.impl_; }
+};
+inline Trainer::Impl& impl_of(Trainer& t) { return TrainerAccess::of(t); }
+inline const Trainer::Impl& impl_of(const Trainer& t) { return TrainerAccess::of(t); }
 
 // Checkpoint file I/O (checkpoint.cpp). Errors name the file and what is wrong. A checkpoint's
 // bytes (a LibTorch zip archive whose entries carry CRC-32s); TrainingDiverged, nothing made, when

@@ -12,6 +12,7 @@
 #include "env/tracking.hpp"
 #include "learn/trainer_impl.hpp"
 #include "../humanoid_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 
@@ -175,7 +176,7 @@ TEST(AdaptiveInit, TrainerStepsItAndAResumedRunContinuesExactly) {
     o.run_dir = dir / "straight";
     Trainer t(parse_train_config(text, "asi.yaml"), o);
     for (int i = 0; i < 4; ++i) straight.push_back(init_metrics(t.iterate()));
-    straight_means = t.impl().adaptive_init->means();
+    straight_means = impl_of(t).adaptive_init->means();
   }
   EXPECT_GE(straight.back()[0], 2.0);  // gradient steps were taken
   EXPECT_GT(straight.back()[1], 0.0);  // and moved the means
@@ -191,7 +192,7 @@ TEST(AdaptiveInit, TrainerStepsItAndAResumedRunContinuesExactly) {
   Trainer t(parse_train_config(text, "asi.yaml"), o);
   for (int i = 0; i < 2; ++i) resumed.push_back(init_metrics(t.iterate()));
   EXPECT_EQ(resumed, straight);
-  EXPECT_EQ(t.impl().adaptive_init->means(), straight_means);
+  EXPECT_EQ(impl_of(t).adaptive_init->means(), straight_means);
   // A walker has no clip to start from.
   EXPECT_THROW(Trainer(parse_train_config("env: {name: planar_walker}\ninit: {kind: adaptive}\n", "w.yaml")), Error);
 }

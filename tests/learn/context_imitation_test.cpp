@@ -16,6 +16,7 @@
 #include "toy_env.hpp"
 #include "../error_message.hpp"
 #include "../test_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 using namespace mimic::test;
@@ -26,7 +27,7 @@ TEST(AdversarialConfig, BehaviourContextsTakeOneExpertFileEach) {
   const TrainOptions o = context_oscillator_options(10);
   const std::string text = "collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, " + experts + "}\n";
   Trainer t(parse_train_config(text, "ctx.yaml"), o);
-  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  auto* source = dynamic_cast<AdversarialRewardSource*>(impl_of(t).rewards.at(0).second.get());
   ASSERT_NE(source, nullptr);
   // Expert rows: the next state (x', v') of each file, then the file's one-hot context.
   const torch::Tensor e = source->discriminator().expert();
@@ -63,7 +64,7 @@ TEST(AdversarialConfig, MismatchedPairsEachFileWithTheOtherContexts) {
   const auto dir = test::temp_dir("adversarial_mismatched");
   const auto [small, large, experts] = two_orbits(dir, 2);
   const TrainOptions o = context_oscillator_options(10);
-  auto source_of = [&](Trainer& t) { return t.impl().rewards.at(0).second.get(); };
+  auto source_of = [&](Trainer& t) { return impl_of(t).rewards.at(0).second.get(); };
   {  // one discriminator: the files again, each with the other one-hot
     Trainer t(parse_train_config("collect: {envs: 2, samples: 64}\nrewards:\n  - {source: gail, mismatched: 0.5, " + experts + "}\n", "ctx.yaml"), o);
     auto* source = dynamic_cast<AdversarialRewardSource*>(source_of(t));
@@ -128,16 +129,16 @@ TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
   EXPECT_GT(large_after - small_after, 0.6);
   // The discriminator tells the contexts apart: each expert file scores higher under its own
   // context than under the other, relative to the other file (mimic score).
-  auto score = [&](const Demonstrations& d, int context) { return mean_of(t.discriminator_scores(d, context).at(0).second); };
+  auto score = [&](const Demonstrations& d, int context) { return mean_of(test::discriminator_scores(t, d, context)); };
   const double s00 = score(small, 0), s01 = score(small, 1), s10 = score(large, 0), s11 = score(large, 1);
   std::cout << "discriminator reward: small orbit " << s00 << " (context 0), " << s01 << " (context 1); large orbit " << s10
             << " (context 0), " << s11 << " (context 1)\n";
   EXPECT_GT(s00 - s01, s10 - s11 + 0.1);
-  EXPECT_THROW(t.discriminator_scores(small, 2), Error);   // outside the run's contexts
-  EXPECT_THROW(t.discriminator_scores(small, -1), Error);  // a context run's discriminator needs one
+  EXPECT_THROW(test::discriminator_scores(t, small, 2), Error);   // outside the run's contexts
+  EXPECT_THROW(test::discriminator_scores(t, small, -1), Error);  // a context run's discriminator needs one
   Demonstrations narrow = small;
   narrow.obs = small.obs.leftCols(1);
-  EXPECT_THROW(t.discriminator_scores(narrow, 0), Error);  // not this run's observations
+  EXPECT_THROW(test::discriminator_scores(t, narrow, 0), Error);  // not this run's observations
 }
 
 // The same two behaviours with one discriminator per context (per_context: true): each learns
@@ -151,13 +152,13 @@ TEST(AdversarialImitation, ADiscriminatorPerContextTeachesBothBehaviours) {
   const std::string text = with_experts(
       gail_config(dir / "small.csv", iterations, ", epochs: 5, lr: 3.0e-3, gradient_penalty: 1, per_context: true"), dir / "small.csv", experts);
   Trainer t(parse_train_config(text, "ctx.yaml"), o);
-  ASSERT_NE(dynamic_cast<PerContextRewardSource*>(t.impl().rewards[0].second.get()), nullptr);
+  ASSERT_NE(dynamic_cast<PerContextRewardSource*>(impl_of(t).rewards[0].second.get()), nullptr);
   IterationMetrics last;
   for (int i = 0; i < iterations; ++i) last = t.iterate();
   EXPECT_FALSE(std::isnan(last.get("gail_policy_accuracy_c0")));  // each part's metrics, by context
   EXPECT_FALSE(std::isnan(last.get("gail_policy_accuracy_c1")));
   const double small_after = held_radius(t, 0), large_after = held_radius(t, 1);
-  auto score = [&](const Demonstrations& d, int context) { return mean_of(t.discriminator_scores(d, context).at(0).second); };
+  auto score = [&](const Demonstrations& d, int context) { return mean_of(test::discriminator_scores(t, d, context)); };
   const double s00 = score(small, 0), s01 = score(small, 1), s10 = score(large, 0), s11 = score(large, 1);
   std::cout << "radius with context 0: " << small_after << ", with context 1: " << large_after << "; discriminator reward: small orbit "
             << s00 << " (part 0), " << s01 << " (part 1); large orbit " << s10 << " (part 0), " << s11 << " (part 1)\n";
@@ -165,15 +166,15 @@ TEST(AdversarialImitation, ADiscriminatorPerContextTeachesBothBehaviours) {
   EXPECT_GT(large_after - small_after, 0.6);
   EXPECT_GT(s00, s10);  // part 0 prefers the small orbit, part 1 the large one
   EXPECT_GT(s11, s01);
-  EXPECT_THROW(t.discriminator_scores(small, -1), Error);
+  EXPECT_THROW(test::discriminator_scores(t, small, -1), Error);
   // Saved and loaded part by part.
   t.save_checkpoint(dir / "saved.pt");
   TrainOptions elsewhere = o;
   elsewhere.run_dir = dir / "again";
   Trainer again(parse_train_config(text, "ctx.yaml"), elsewhere);
   again.load_checkpoint(dir / "saved.pt");
-  EXPECT_DOUBLE_EQ(mean_of(again.discriminator_scores(large, 1).at(0).second), s11);
-  EXPECT_DOUBLE_EQ(mean_of(again.discriminator_scores(small, 0).at(0).second), s00);
+  EXPECT_DOUBLE_EQ(mean_of(test::discriminator_scores(again, large, 1)), s11);
+  EXPECT_DOUBLE_EQ(mean_of(test::discriminator_scores(again, small, 0)), s00);
   // per_context needs one file per context.
   const std::string single = error_of([&] {
     Trainer bad(parse_train_config(gail_config(dir / "small.csv", 1, ", per_context: true"), "one.yaml"), oscillator_options());
@@ -197,9 +198,9 @@ TEST(AdversarialImitation, EveryDiscriminatorPerContextStartsAsTheSingleBehaviou
   Trainer t(parse_train_config(two, "osc_context.yaml"), c);
   EXPECT_EQ(t.reward_sources_initialised(), 1);
   for (const Demonstrations& d : {small, large}) {
-    const std::vector<double> before = source.discriminator_scores(d, -1).at(0).second;
+    const std::vector<double> before = test::discriminator_scores(source, d, -1);
     for (int context : {0, 1}) {
-      const std::vector<double> now = t.discriminator_scores(d, context).at(0).second;
+      const std::vector<double> now = test::discriminator_scores(t, d, context);
       ASSERT_EQ(now.size(), before.size());
       for (std::size_t i = 0; i < now.size(); ++i) EXPECT_NEAR(now[i], before[i], 1e-5) << "context " << context << ", sample " << i;
     }
@@ -234,8 +235,8 @@ TEST(AdversarialImitation, EachDiscriminatorPerContextStartsFromItsOwnBehaviours
   EXPECT_EQ(t.context_discriminators_initialised(), 1);
   double runs_differ = 0;
   for (const Demonstrations& d : {small, large}) {
-    const std::vector<double> s = small_run->discriminator_scores(d, -1).at(0).second, l = large_run->discriminator_scores(d, -1).at(0).second;
-    const std::vector<double> part0 = t.discriminator_scores(d, 0).at(0).second, part1 = t.discriminator_scores(d, 1).at(0).second;
+    const std::vector<double> s = test::discriminator_scores(*small_run, d, -1), l = test::discriminator_scores(*large_run, d, -1);
+    const std::vector<double> part0 = test::discriminator_scores(t, d, 0), part1 = test::discriminator_scores(t, d, 1);
     ASSERT_EQ(part0.size(), s.size());
     ASSERT_EQ(part1.size(), l.size());
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -291,7 +292,7 @@ TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextA
   o.run_dir = dir / "source";
   Trainer source(parse_train_config(text, "osc.yaml"), o);
   source.run();
-  auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*source.impl().rewards[0].second).discriminator();
+  auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*impl_of(source).rewards[0].second).discriminator();
 
   // The same set-up over two behaviours: a one-hot after the observation, one expert file each.
   const std::string two = with_experts(text, dir / "small.csv", experts);
@@ -306,20 +307,20 @@ TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextA
   for (const Eigen::Vector2d& context : {Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)}) {
     Eigen::Vector4d input;
     input << x, context;
-    EXPECT_NEAR(t.act(input)[0], source.act(x)[0], 1e-6);
+    EXPECT_NEAR(test::act(t, input)[0], test::act(source, x)[0], 1e-6);
   }
   // (Normalised, the one-hot is ±1 and would cancel equal weights: look at them.)
-  const torch::Tensor first = t.impl().learner->policy()->named_parameters()["net.layers.0.weight"];
+  const torch::Tensor first = impl_of(t).learner->policy()->named_parameters()["net.layers.0.weight"];
   EXPECT_TRUE(torch::equal(first.slice(1, 2, 4), torch::zeros({first.size(0), 2})));
-  EXPECT_TRUE(torch::equal(first.slice(1, 0, 2), source.impl().learner->policy()->named_parameters()["net.layers.0.weight"]));
+  EXPECT_TRUE(torch::equal(first.slice(1, 0, 2), impl_of(source).learner->policy()->named_parameters()["net.layers.0.weight"]));
   // ... under the source's statistics, the one-hot's those of contexts drawn evenly.
-  const RunningNormalizer& norm = t.impl().obs_norm;
-  EXPECT_DOUBLE_EQ(norm.count(), source.impl().obs_norm.count());
-  EXPECT_TRUE(norm.mean().head(2).isApprox(source.impl().obs_norm.mean()));
+  const RunningNormalizer& norm = impl_of(t).obs_norm;
+  EXPECT_DOUBLE_EQ(norm.count(), impl_of(source).obs_norm.count());
+  EXPECT_TRUE(norm.mean().head(2).isApprox(impl_of(source).obs_norm.mean()));
   EXPECT_NEAR(norm.mean()[2], 0.5, 1e-12);
   EXPECT_NEAR(norm.variance()[3], 0.25, 1e-12);
   // The discriminator scores the source's expert samples as before, in either context.
-  auto& disc = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second).discriminator();
+  auto& disc = dynamic_cast<AdversarialRewardSource&>(*impl_of(t).rewards[0].second).discriminator();
   ASSERT_EQ(disc.input_size(), source_disc.input_size() + 2);
   const torch::Tensor expert = source_disc.expert();
   const torch::Tensor scores = source_disc.reward(expert);
@@ -341,7 +342,7 @@ TEST(AdversarialImitation, ASingleBehaviourRunStartsAContextRunWithEveryContextA
       gail_config(dir / "small.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2, features: [position, velocity]");
   Trainer one(parse_train_config(one_expert, "osc_context_one_expert.yaml"), shared);
   EXPECT_EQ(one.reward_sources_initialised(), 1);
-  auto& one_disc = dynamic_cast<AdversarialRewardSource&>(*one.impl().rewards[0].second).discriminator();
+  auto& one_disc = dynamic_cast<AdversarialRewardSource&>(*impl_of(one).rewards[0].second).discriminator();
   EXPECT_TRUE(torch::allclose(one_disc.reward(expert), scores, 1e-6, 1e-6));
   // A context run cannot start one without contexts; nor can a source of another size.
   TrainOptions back = oscillator_options();

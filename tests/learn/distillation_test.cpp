@@ -10,6 +10,7 @@
 #include "learn/train_config.hpp"
 #include "toy_env.hpp"
 #include "../error_message.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 using mimic::test::error_of;
@@ -82,7 +83,7 @@ TEST(Distillation, OneStudentLearnsTwoTeachersBehavioursFromItsOwnStates) {
   Trainer student(parse_train_config("collect: {envs: 4, samples: 64}\npolicy: {hidden: [32, 32], activation: tanh, log_std: -1.5}\n", "s.yaml"),
                   o);
   const auto radius = [&](int context) {
-    return test::held_orbit_radius([&](const Eigen::VectorXd& s) { return student.act(s); }, context);
+    return test::held_orbit_radius([&](const Eigen::VectorXd& s) { return test::act(student, s); }, context);
   };
   const double small_before = radius(0), large_before = radius(1);
   DistillOptions d;

@@ -11,6 +11,7 @@
 #include "learn/trainer_impl.hpp"
 #include "imitation_fixtures.hpp"
 #include "../test_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 
@@ -86,7 +87,7 @@ TEST(Divergence, ADiscriminatorThatDivergesStopsTheRunAndTheLastCheckpointResume
     t.iterate();
     t.iterate();
     const std::string saved = read_text_file(run / "checkpoint.pt");
-    auto& source = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second);
+    auto& source = dynamic_cast<AdversarialRewardSource&>(*impl_of(t).rewards[0].second);
     {
       torch::NoGradGuard no_grad;
       source.discriminator().net()->parameters()[0].view(-1)[0] = poison;

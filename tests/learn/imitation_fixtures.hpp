@@ -12,6 +12,7 @@
 #include "learn/demonstrations.hpp"
 #include "learn/trainer.hpp"
 #include "toy_env.hpp"
+#include "trainer_access.hpp"
 
 namespace mimic::test {
 
@@ -88,6 +89,6 @@ inline TrainOptions context_oscillator_options(int period = 0) {
 
 // The toy's held_orbit_radius, acting with the trainer's mean action.
 inline double held_radius(Trainer& t, int context) {
-  return test::held_orbit_radius([&t](const Eigen::VectorXd& obs) { return t.act(obs); }, context);
+  return test::held_orbit_radius([&t](const Eigen::VectorXd& obs) { return test::act(t, obs); }, context);
 }
 }  // namespace mimic::test

@@ -24,6 +24,7 @@
 #include "../error_message.hpp"
 #include "../humanoid_data.hpp"
 #include "../test_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 using namespace mimic::test;
@@ -148,7 +149,7 @@ TEST(AdversarialConfig, TheEnsemblesDefaultsAreSeed004s) {
   std::string yaml = gail_config(dir / "expert.csv", 1);
   yaml.replace(yaml.find("source: gail"), 12, "source: iccgan");
   Trainer t(parse_train_config(yaml, "osc.yaml"), oscillator_options());
-  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  auto* source = dynamic_cast<AdversarialRewardSource*>(impl_of(t).rewards.at(0).second.get());
   ASSERT_NE(source, nullptr);
   const DiscriminatorConfig& d = source->discriminator().config();
   EXPECT_EQ(d.loss, "hinge");
@@ -163,7 +164,7 @@ TEST(AdversarialConfig, GailsRewardFormIsChosenAndTheEnsembleRefusesIt) {
   const auto dir = test::temp_dir("adversarial_reward_form");
   write_demonstrations(dir / "expert.csv", oscillator_expert(2));
   Trainer t(parse_train_config(gail_config(dir / "expert.csv", 1, ", reward: log_d, reward_offset: 5"), "osc.yaml"), oscillator_options());
-  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  auto* source = dynamic_cast<AdversarialRewardSource*>(impl_of(t).rewards.at(0).second.get());
   ASSERT_NE(source, nullptr);
   EXPECT_EQ(source->discriminator().config().reward, "log_d");
   // log D <= 0: with the offset of 5 every reward lies in [5 - 10, 5].
@@ -193,7 +194,7 @@ TEST(AdversarialConfig, AnExpertWithAnotherBodyIsMatchedByItsLayout) {
   write_demonstrations(dir / "other_body.csv", d);
   EXPECT_EQ(read_demonstrations(dir / "other_body.csv").layout.size(), 2u);
   Trainer t(parse_train_config(gail_config(dir / "other_body.csv", 1, ", features: [position, velocity]"), "osc.yaml"), oscillator_options());
-  auto* source = dynamic_cast<AdversarialRewardSource*>(t.impl().rewards.at(0).second.get());
+  auto* source = dynamic_cast<AdversarialRewardSource*>(impl_of(t).rewards.at(0).second.get());
   ASSERT_NE(source, nullptr);
   // The expert features are position then velocity, taken from columns 3 and 1 of the other
   // body's observation: the same numbers this environment's own expert gives.
@@ -210,7 +211,7 @@ TEST(Record, KeepsEveryNthStepOfEachEpisodeFromThePolicy) {
   write_demonstrations(dir / "expert.csv", oscillator_expert(2));
   Trainer t(parse_train_config(gail_config(dir / "expert.csv", 1), "osc.yaml"), oscillator_options());
   std::vector<double> returns;
-  const Demonstrations d = t.record(5, 10, /*deterministic=*/false, 3, &returns);
+  const Demonstrations d = test::record(t, 5, 10, /*deterministic=*/false, 3, &returns);
   EXPECT_EQ(returns.size(), 5u);
   EXPECT_EQ(d.episodes(), 5);
   EXPECT_EQ(d.size(), 5 * test::OscillatorEnv::kLength / 10);
@@ -346,14 +347,14 @@ TEST(AdversarialImitation, AnExportedModelKeepsTheDiscriminatorsScoresAndDropsIt
       gail_config(dir / "expert.csv", 2, ", loss: hinge, heads: 4, gradient_penalty: 1, replay: 1500, epochs: 2"), "osc.yaml");
   Trainer t(cfg, oscillator_options());
   t.run();
-  auto& disc = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second).discriminator();
+  auto& disc = dynamic_cast<AdversarialRewardSource&>(*impl_of(t).rewards[0].second).discriminator();
   ASSERT_EQ(disc.replay_rows(), 1500);
   const torch::Tensor scores = disc.reward(disc.expert());
   t.save_checkpoint(dir / "run.pt");
   t.export_model(dir / "model.pt");
   Trainer model(cfg, oscillator_options());
   model.load_checkpoint(dir / "model.pt");
-  auto& loaded = dynamic_cast<AdversarialRewardSource&>(*model.impl().rewards[0].second).discriminator();
+  auto& loaded = dynamic_cast<AdversarialRewardSource&>(*impl_of(model).rewards[0].second).discriminator();
   EXPECT_TRUE(torch::equal(loaded.reward(loaded.expert()), scores));
   EXPECT_EQ(loaded.replay_rows(), 0);
   EXPECT_LT(std::filesystem::file_size(dir / "model.pt"), std::filesystem::file_size(dir / "run.pt"));
@@ -419,7 +420,7 @@ TEST(AdversarialImitation, ANewRunStartsFromAnotherRunsWeightsUnderAChangedConfi
   Trainer source(parse_train_config(text, "osc.yaml"), o);
   source.run();
   const Eigen::VectorXd input = Eigen::Vector2d(0.3, -0.8);
-  auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*source.impl().rewards[0].second).discriminator();
+  auto& source_disc = dynamic_cast<AdversarialRewardSource&>(*impl_of(source).rewards[0].second).discriminator();
   const torch::Tensor scores = source_disc.reward(source_disc.expert());
 
   std::string changed = text;
@@ -432,10 +433,10 @@ TEST(AdversarialImitation, ANewRunStartsFromAnotherRunsWeightsUnderAChangedConfi
   EXPECT_EQ(t.iteration(), 0);
   EXPECT_EQ(t.samples(), 0);
   EXPECT_EQ(t.reward_sources_initialised(), 1);
-  EXPECT_EQ(t.act(input), source.act(input));  // the same mean action: policy and normaliser
-  EXPECT_TRUE(torch::allclose(t.impl().learner->policy()->log_std(), torch::full({1}, -2.0)));  // the config's fixed noise
-  EXPECT_TRUE(t.impl().learner->policy_optimizer().state().empty());
-  auto& disc = dynamic_cast<AdversarialRewardSource&>(*t.impl().rewards[0].second).discriminator();
+  EXPECT_EQ(test::act(t, input), test::act(source, input));  // the same mean action: policy and normaliser
+  EXPECT_TRUE(torch::allclose(impl_of(t).learner->policy()->log_std(), torch::full({1}, -2.0)));  // the config's fixed noise
+  EXPECT_TRUE(impl_of(t).learner->policy_optimizer().state().empty());
+  auto& disc = dynamic_cast<AdversarialRewardSource&>(*impl_of(t).rewards[0].second).discriminator();
   EXPECT_TRUE(torch::equal(disc.reward(disc.expert()), scores));
   t.iterate();  // and it trains on
   EXPECT_EQ(t.iteration(), 1);

@@ -15,6 +15,7 @@
 #include "learn/trainer.hpp"
 #include "../error_message.hpp"
 #include "../test_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 using mimic::test::error_of;
@@ -57,7 +58,7 @@ TEST(RunIntegrity, AFlippedByteInACheckpointIsRefusedAndTheResumeOffersThePrevio
   EXPECT_TRUE(contains(what, "fails the CRC-32 recorded when it was written")) << what;
   EXPECT_TRUE(contains(what, "the previous checkpoint " + (dir / "checkpoint.prev.pt").string() + " is intact (iteration 2)")) << what;
   EXPECT_EQ(read_text_file(dir / "checkpoint.pt"), damaged);  // not rewritten
-  EXPECT_TRUE(contains(error_of([&] { Trainer::load_policy(dir); }), "checkpoint is damaged")) << "eval, render, record, score";
+  EXPECT_TRUE(contains(error_of([&] { Trainer::from_run(dir); }), "checkpoint is damaged")) << "eval, render, record, score";
   // As offered: the previous checkpoint resumes, and the metrics go back to its iteration.
   std::filesystem::rename(dir / "checkpoint.prev.pt", dir / "checkpoint.pt");
   Trainer resumed(config(walker(4, 2)), o);

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <iostream>
+#include <numeric>
 
+#include "control/episodes.hpp"
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -16,6 +18,7 @@
 #include "learn/trainer_impl.hpp"
 #include "mimic/runtime.hpp"
 #include "../test_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 
@@ -66,7 +69,7 @@ TEST_P(CommittedModel, TorchFreeActionsMatchLibTorchsOnItsOwnEpisodes) {
   const std::filesystem::path model = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / GetParam();
   std::unique_ptr<Trainer> trainer;
   try {
-    trainer = Trainer::load_policy(model);
+    trainer = Trainer::from_run(model);
   } catch (const Error& e) {
     if (shared_data_dir().empty()) GTEST_SKIP() << GetParam() << " needs ../shared/data, not found: " << e.what();
     throw;
@@ -90,13 +93,19 @@ TEST_P(CommittedModel, TorchFreeActionsMatchLibTorchsOnItsOwnEpisodes) {
   EXPECT_LT(gap, kTolerance) << GetParam();
   std::cout << "models/" << GetParam() << ": the largest relative action difference over " << kSteps << " observations is " << gap << "\n";
   // The single-input path (Trainer::act's) agrees with the batch.
-  EXPECT_LT(relative_gap(skill->act(Eigen::VectorXd(inputs.row(kSteps / 2).transpose())).transpose(), trainer->act(inputs.row(kSteps / 2).transpose()).transpose()),
+  EXPECT_LT(relative_gap(skill->act(Eigen::VectorXd(inputs.row(kSteps / 2).transpose())).transpose(), test::act(*trainer, inputs.row(kSteps / 2).transpose()).transpose()),
             kTolerance);
-  // A committed networks.mimic is the one the checkpoint gives.
+  // A committed networks.mimic holds what the checkpoint gives (and the discriminators, which a
+  // conversion without the expert files leaves out).
   if (std::filesystem::exists(model / kRuntimeFileName)) {
-    EXPECT_EQ(read_text_file(model / kRuntimeFileName, kMaxCheckpointBytes), read_text_file(dir / kRuntimeFileName, kMaxCheckpointBytes))
-        << "models/" << GetParam() << "/networks.mimic is stale: mimic export models/" << GetParam() << " -o models/" << GetParam()
-        << " --networks-only";
+    const std::vector<NamedArray> committed = decode_arrays(read_text_file(model / kRuntimeFileName, kMaxCheckpointBytes));
+    for (const NamedArray& a : decode_arrays(read_text_file(dir / kRuntimeFileName, kMaxCheckpointBytes))) {
+      if (a.name == "discriminator.count") continue;
+      const auto it = std::find_if(committed.begin(), committed.end(), [&](const NamedArray& c) { return c.name == a.name; });
+      const bool same = it != committed.end() && it->shape == a.shape && it->text == a.text && it->f32 == a.f32 && it->f64 == a.f64;
+      EXPECT_TRUE(same) << "models/" << GetParam() << "/networks.mimic is stale (array " << a.name << "): mimic export models/" << GetParam()
+                        << " -o models/" << GetParam() << " --networks-only";
+    }
   }
 }
 
@@ -112,7 +121,7 @@ TEST(Runtime, TheImitationFiguresOfTheTable2SkillsAreThoseLibTorchGave) {
            {"humanoid_walk_iccgan", "walk"}, {"humanoid_punch_iccgan_annealed", "punch"}, {"humanoid_kick_iccgan_total", "kick"}}) {
     SCOPED_TRACE(model);
     const std::filesystem::path dir = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / model;
-    const auto trainer = Trainer::load_policy(dir);
+    const auto trainer = Trainer::from_run(dir);
     const auto skill = Skill::load(dir);
     LoadOptions load;
     const Clip clip = load_motion(data / "deepmimic" / "motions" / ("humanoid3d_" + clip_name + ".txt"), load);
@@ -120,7 +129,7 @@ TEST(Runtime, TheImitationFiguresOfTheTable2SkillsAreThoseLibTorchGave) {
       const std::unique_ptr<Env> env = make_skill_env(*skill);
       return measure_imitation(dynamic_cast<CharacterEnv&>(*env), act, skill->history(), 6, &clip);
     };
-    const ImitationReport torch = measure([&](const Eigen::VectorXd& x) { return trainer->act(x); });
+    const ImitationReport torch = measure([&](const Eigen::VectorXd& x) { return test::act(*trainer, x); });
     const ImitationReport ours = measure([&](const Eigen::VectorXd& x) { return skill->act(x); });
     EXPECT_NEAR(ours.error_mean(), torch.error_mean(), 1e-4);
     EXPECT_NEAR(ours.pose_error_mean(), torch.pose_error_mean(), 1e-4);
@@ -147,12 +156,12 @@ TEST(Runtime, AGruPolicyAndItsValueActAsLibTorchsAfterTraining) {
   std::normal_distribution<double> normal(0.0, 2.0);
   Eigen::MatrixXd inputs(200, skill->input_size());
   for (Eigen::Index i = 0; i < inputs.size(); ++i) inputs.data()[i] = normal(rng);
-  inputs += trainer.impl().obs_norm.mean().transpose().replicate(inputs.rows(), 1);
+  inputs += impl_of(trainer).obs_norm.mean().transpose().replicate(inputs.rows(), 1);
   EXPECT_LT(relative_gap(skill->act(inputs), libtorch_policy_actions(trainer, inputs)), kTolerance);
   torch::NoGradGuard no_grad;
-  const Eigen::MatrixXf x = trainer.impl().obs_norm.normalize(inputs).cast<float>();
+  const Eigen::MatrixXf x = impl_of(trainer).obs_norm.normalize(inputs).cast<float>();
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = x;
-  const torch::Tensor v = trainer.impl().learner->value()->forward(torch::from_blob(const_cast<float*>(rows.data()), {rows.rows(), rows.cols()}, torch::kFloat32));
+  const torch::Tensor v = impl_of(trainer).learner->value()->forward(torch::from_blob(const_cast<float*>(rows.data()), {rows.rows(), rows.cols()}, torch::kFloat32));
   const Eigen::VectorXd value = skill->value(inputs);
   for (Eigen::Index i = 0; i < value.size(); ++i) EXPECT_NEAR(value[i], v[i].item<double>(), kTolerance * std::max(1.0, std::abs(value[i])));
 }
@@ -167,3 +176,57 @@ TEST(Runtime, BeforeAnyStatisticsTheNormaliserIsTheIdentity) {
 }
 
 }  // namespace
+
+// `mimic eval`'s and `mimic record`'s episodes on the runtime (control/episodes.hpp) are the ones
+// the trainer's collector ran for the same seed: the same starts in the same environments and the
+// same exploration noise. Not bit for bit afterwards: the runtime's actions differ from LibTorch's
+// by about 1e-6 (another summation order), and physics grows that over hundreds of steps, so the
+// figures agree to a fraction of a percent, not to the last digit (docs/runtime.md).
+TEST(Runtime, EvalAndRecordEpisodesAreTheCollectorsForTheSameSeed) {
+  for (const std::string& model : {std::string("walker_ppo"), std::string("humanoid_walk_iccgan")}) {
+    const std::filesystem::path dir = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / model;
+    std::unique_ptr<Trainer> trainer;
+    try {
+      trainer = Trainer::from_run(dir);
+    } catch (const Error& e) {
+      if (shared_data_dir().empty()) GTEST_SKIP() << model << " needs ../shared/data, not found: " << e.what();
+      throw;
+    }
+    const auto skill = Skill::load(dir);
+    for (const bool stochastic : {false, true}) {
+      SCOPED_TRACE(model + (stochastic ? " (sampled actions)" : " (mean actions)"));
+      const int episodes = model == "walker_ppo" ? 6 : 3;
+      EpisodeStats torch, ours;
+      std::mt19937_64 torch_noise(99), noise(99);
+      const Rollout reference = impl_of(*trainer).side_episodes(episodes, 99, torch_noise, !stochastic, torch);
+      EpisodeOptions o;
+      o.episodes = episodes, o.slots = trainer->config().collect.envs, o.threads = 2, o.seed = 99, o.deterministic = !stochastic;
+      const Rollout steps = run_episodes(*skill, o, noise, ours);
+      ASSERT_EQ(steps.env_steps.size(), reference.env_steps.size());
+      for (std::size_t e = 0; e < steps.env_steps.size(); ++e) {
+        const int i = steps.env_steps[e].front(), j = reference.env_steps[e].front();
+        // The same start, exactly, and the same noise: action - mean is sigma z for the same z.
+        EXPECT_EQ(Eigen::VectorXd(steps.frame(i)), Eigen::VectorXd(reference.frame(j))) << "environment " << e;
+        for (int k = 0; k < steps.action_size; ++k) {
+          const std::size_t a = static_cast<std::size_t>(i * steps.action_size + k), b = static_cast<std::size_t>(j * steps.action_size + k);
+          EXPECT_NEAR(steps.action[a] - steps.mean[a], reference.action[b] - reference.mean[b], 1e-5);
+        }
+      }
+      EXPECT_EQ(ours.failures, torch.failures);
+      ASSERT_EQ(ours.returns.size(), torch.returns.size());
+      EXPECT_NEAR(mean_of(ours.returns), mean_of(torch.returns), 0.02 * std::abs(mean_of(torch.returns)));
+      const double our_length = std::accumulate(ours.lengths.begin(), ours.lengths.end(), 0.0),
+                   their_length = std::accumulate(torch.lengths.begin(), torch.lengths.end(), 0.0);
+      EXPECT_NEAR(our_length, their_length, 0.01 * their_length);
+      std::cout << "models/" << model << (stochastic ? " sampled" : " mean") << ": mean return " << mean_of(ours.returns) << " on the runtime, "
+                << mean_of(torch.returns) << " on LibTorch; " << our_length << " and " << their_length << " steps\n";
+      // record keeps every 10th step of each episode from offsets drawn after the noise.
+      std::mt19937_64 offsets(5), torch_offsets(5);
+      const Demonstrations recorded = demonstrations_of(steps, skill->impl().layout, 10, offsets);
+      const Demonstrations kept = demonstrations_of(reference, trainer->observation_layout(), 10, torch_offsets);
+      EXPECT_NEAR(recorded.size(), kept.size(), 0.01 * kept.size() + 1);
+      EXPECT_EQ(recorded.episodes(), kept.episodes());
+      EXPECT_LT((recorded.obs.row(0) - kept.obs.row(0)).cwiseAbs().maxCoeff(), 1e-3);  // a few steps in, the same offset
+    }
+  }
+}

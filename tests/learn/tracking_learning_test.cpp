@@ -13,6 +13,7 @@
 #include "learn/trainer.hpp"
 #include "motion/clip.hpp"
 #include "sim/character_model.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 
@@ -61,8 +62,8 @@ TEST(TrackingLearning, ASwingingArmIsFollowedCloserAfterAFewIterations) {
       "optimizer: {policy_lr: 1.0e-3, value_lr: 1.0e-3}\n";
   Trainer t(parse_train_config(config, "arm.yaml"), opts);
   auto measure = [&] {
-    const std::unique_ptr<Env> env = t.make_env();
-    const PolicyFunction act = [&](const Eigen::VectorXd& x) { return t.act(x); };
+    const std::unique_ptr<Env> env = impl_of(t).factory();
+    const PolicyFunction act = [&](const Eigen::VectorXd& x) { return test::act(t, x); };
     return measure_imitation(dynamic_cast<CharacterEnv&>(*env), act, 1, 10);
   };
   const ImitationReport before = measure();

@@ -13,6 +13,7 @@
 #include "toy_env.hpp"
 #include "../humanoid_data.hpp"
 #include "../test_data.hpp"
+#include "trainer_access.hpp"
 
 using namespace mimic;
 
@@ -95,8 +96,8 @@ TEST(Trainer, CheckpointRoundTripIsBitIdenticalAndContinuesIdentically) {
   b.load_checkpoint(dir / "c.pt");
   EXPECT_EQ(b.iteration(), 2);
   EXPECT_EQ(b.samples(), a.samples());
-  auto& ia = a.impl();
-  auto& ib = b.impl();
+  auto& ia = impl_of(a);
+  auto& ib = impl_of(b);
   expect_identical(params(*ia.learner->policy()), params(*ib.learner->policy()));
   expect_identical(params(*ia.learner->value()), params(*ib.learner->value()));
   const auto adam_a = adam_state(ia.learner->policy_optimizer()), adam_b = adam_state(ib.learner->policy_optimizer());
@@ -285,18 +286,18 @@ TEST(Trainer, AnExportedModelActsAsItsRunWithoutOptimiserStateAndIsNotResumed) {
   TrainOptions o;
   o.run_dir = dir / "run";
   Trainer(config(walker_config(2, 1)), o).run();
-  const std::unique_ptr<Trainer> run = Trainer::load_policy(dir / "run");
-  ASSERT_FALSE(run->impl().learner->policy_optimizer().state().empty());  // Adam has moments after two iterations
+  const std::unique_ptr<Trainer> run = Trainer::from_run(dir / "run");
+  ASSERT_FALSE(impl_of(*run).learner->policy_optimizer().state().empty());  // Adam has moments after two iterations
   const Eigen::VectorXd input = Eigen::VectorXd::LinSpaced(run->input_size(), -1.0, 1.0);
-  const Eigen::VectorXd action = run->act(input);
+  const Eigen::VectorXd action = test::act(*run, input);
   std::filesystem::create_directories(dir / "model");
   write_file_atomic(dir / "model" / "config.yaml", read_text_file(dir / "run" / "config.yaml"));
   run->export_model(dir / "model" / "checkpoint.pt");
-  const std::unique_ptr<Trainer> model = Trainer::load_policy(dir / "model");
-  EXPECT_EQ(model->act(input), action);
+  const std::unique_ptr<Trainer> model = Trainer::from_run(dir / "model");
+  EXPECT_EQ(test::act(*model, input), action);
   EXPECT_EQ(model->iteration(), 2);
-  EXPECT_TRUE(model->impl().learner->policy_optimizer().state().empty());
-  EXPECT_TRUE(model->impl().learner->value_optimizer().state().empty());
+  EXPECT_TRUE(impl_of(*model).learner->policy_optimizer().state().empty());
+  EXPECT_TRUE(impl_of(*model).learner->value_optimizer().state().empty());
   EXPECT_LT(std::filesystem::file_size(dir / "model" / "checkpoint.pt"), std::filesystem::file_size(dir / "run" / "checkpoint.pt"));
   o.run_dir = dir / "model";
   o.resume = true;
@@ -319,13 +320,13 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   Trainer run(config(text), o);
   run.iterate();
   run.iterate();
-  const std::vector<torch::Tensor> at2 = params(*run.impl().learner->policy());
-  const RunningNormalizer norm2 = run.impl().obs_norm;
+  const std::vector<torch::Tensor> at2 = params(*impl_of(run).learner->policy());
+  const RunningNormalizer norm2 = impl_of(run).obs_norm;
   run.iterate();
   run.iterate();
   run.save_checkpoint(dir / "run" / "checkpoint.pt");
-  const std::vector<torch::Tensor> at4 = params(*run.impl().learner->policy());
-  const RunningNormalizer& norm4 = run.impl().obs_norm;
+  const std::vector<torch::Tensor> at4 = params(*impl_of(run).learner->policy());
+  const RunningNormalizer& norm4 = impl_of(run).obs_norm;
 
   write_file_atomic(dir / "run" / "snapshots" / "000003 copy.pt", "a user's copy");  // not a snapshot's name: not listed
   write_file_atomic(dir / "run" / "snapshots" / "99999999999.pt", "too long for an iteration");
@@ -350,7 +351,7 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   Trainer averaged(config(text));
   averaged.load_checkpoint(dir / "run" / "checkpoint.pt");
   const double shift = averaged.average_policy_with({snapshots[0].second});
-  const std::vector<torch::Tensor> mean = params(*averaged.impl().learner->policy());
+  const std::vector<torch::Tensor> mean = params(*impl_of(averaged).learner->policy());
   ASSERT_EQ(mean.size(), at2.size());
   bool moved = false;
   for (std::size_t i = 0; i < mean.size(); ++i) {
@@ -366,9 +367,9 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   Trainer earlier(config(text));
   earlier.load_checkpoint(dir / "run" / "checkpoint.pt");
   earlier.take_policy_from(snapshots[0].second);
-  expect_identical(params(*earlier.impl().learner->policy()), at2);
-  EXPECT_EQ(earlier.impl().obs_norm.mean(), norm2.mean());
-  EXPECT_EQ(earlier.impl().obs_norm.variance(), norm2.variance());
+  expect_identical(params(*impl_of(earlier).learner->policy()), at2);
+  EXPECT_EQ(impl_of(earlier).obs_norm.mean(), norm2.mean());
+  EXPECT_EQ(impl_of(earlier).obs_norm.variance(), norm2.variance());
   EXPECT_EQ(earlier.iteration(), 2);
   EXPECT_EQ(earlier.samples(), 2 * 1024);
 
@@ -376,7 +377,7 @@ TEST(Trainer, SnapshotsHoldThePolicyAndAveragingTakesTheMeanOfEachWeight) {
   Trainer same(config(text));
   same.load_checkpoint(dir / "run" / "checkpoint.pt");
   EXPECT_EQ(same.average_policy_with({snapshots[1].second}), 0.0);
-  expect_identical(params(*same.impl().learner->policy()), at4);
+  expect_identical(params(*impl_of(same).learner->policy()), at4);
 }
 
 TEST(Trainer, AveragingAndTakingAPolicyRefuseAnotherNetworkOrNaNWeights) {
@@ -386,7 +387,7 @@ TEST(Trainer, AveragingAndTakingAPolicyRefuseAnotherNetworkOrNaNWeights) {
   narrow_text.replace(narrow_text.find("policy: {hidden: [32, 32]"), 25, "policy: {hidden: [16, 32]");
   Trainer narrow(config(narrow_text));
   narrow.save_checkpoint(dir / "narrow.pt");
-  const std::vector<torch::Tensor> before = params(*wide.impl().learner->policy());
+  const std::vector<torch::Tensor> before = params(*impl_of(wide).learner->policy());
   try {
     wide.average_policy_with({dir / "narrow.pt"});
     FAIL() << "a policy of another shape was averaged";
@@ -395,18 +396,18 @@ TEST(Trainer, AveragingAndTakingAPolicyRefuseAnotherNetworkOrNaNWeights) {
     EXPECT_NE(what.find("narrow.pt: its policy's '"), std::string::npos) << what;
     EXPECT_NE(what.find("not the same network"), std::string::npos) << what;
   }
-  expect_identical(params(*wide.impl().learner->policy()), before);  // untouched on error
+  expect_identical(params(*impl_of(wide).learner->policy()), before);  // untouched on error
   EXPECT_THROW(wide.average_policy_with({dir / "absent.pt"}), mimic::Error);
   EXPECT_THROW(wide.take_policy_from(dir / "narrow.pt"), mimic::Error);
-  expect_identical(params(*wide.impl().learner->policy()), before);
+  expect_identical(params(*impl_of(wide).learner->policy()), before);
 
   // A policy with a NaN weight is refused by both, naming the weight; nothing changes.
   Trainer broken(config(walker_config(1, 1)));
   {
     torch::NoGradGuard no_grad;
-    broken.impl().learner->policy()->parameters()[0].view(-1)[0] = std::nan("");
+    impl_of(broken).learner->policy()->parameters()[0].view(-1)[0] = std::nan("");
   }
-  write_policy_snapshot(broken.impl(), dir / "nan.pt");
+  write_policy_snapshot(impl_of(broken), dir / "nan.pt");
   for (bool average : {true, false}) {
     try {
       if (average)
@@ -419,7 +420,7 @@ TEST(Trainer, AveragingAndTakingAPolicyRefuseAnotherNetworkOrNaNWeights) {
       EXPECT_NE(std::string(e.what()).find("holds NaN or infinity"), std::string::npos) << e.what();
     }
   }
-  expect_identical(params(*wide.impl().learner->policy()), before);
+  expect_identical(params(*impl_of(wide).learner->policy()), before);
 }
 
 // --init-from a run whose observation lacked a part the config now names (reference_root): the
@@ -445,13 +446,13 @@ TEST(Trainer, ARunWithAnAddedObservationPartStartsFromOneWithoutItActingAsItDid)
   for (const Eigen::Vector3d& offset : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.4, -0.3, 2.0)}) {
     Eigen::VectorXd wide(t.input_size());
     wide << input.head(state), offset, input.tail(1);
-    EXPECT_TRUE(t.act(wide).isApprox(source.act(input), 1e-6)) << offset.transpose();
+    EXPECT_TRUE(test::act(t, wide).isApprox(test::act(source, input), 1e-6)) << offset.transpose();
   }
   // The saved statistics at their places; the new part normalised as its raw value.
-  const RunningNormalizer& norm = t.impl().obs_norm;
-  EXPECT_DOUBLE_EQ(norm.count(), source.impl().obs_norm.count());
-  EXPECT_TRUE(norm.mean().head(state).isApprox(source.impl().obs_norm.mean().head(state)));
-  EXPECT_DOUBLE_EQ(norm.mean()[state + 3], source.impl().obs_norm.mean()[state]);
+  const RunningNormalizer& norm = impl_of(t).obs_norm;
+  EXPECT_DOUBLE_EQ(norm.count(), impl_of(source).obs_norm.count());
+  EXPECT_TRUE(norm.mean().head(state).isApprox(impl_of(source).obs_norm.mean().head(state)));
+  EXPECT_DOUBLE_EQ(norm.mean()[state + 3], impl_of(source).obs_norm.mean()[state]);
   EXPECT_EQ(norm.mean().segment(state, 3), Eigen::Vector3d::Zero());
   EXPECT_TRUE(norm.variance().segment(state, 3).isApprox(Eigen::Vector3d::Ones()));
   // Parts may be added, not reordered.
@@ -547,7 +548,7 @@ TEST(Trainer, DivergenceStopsTheRunWithADiagnosticAndKeepsTheLastCheckpoint) {
   const std::string good = read_text_file(dir / "last_good.pt");
   {
     torch::NoGradGuard g;
-    t.impl().learner->value()->parameters()[0].fill_(NAN);
+    impl_of(t).learner->value()->parameters()[0].fill_(NAN);
   }
   EXPECT_THROW(t.save_checkpoint(dir / "last_good.pt"), TrainingDiverged);
   EXPECT_EQ(read_text_file(dir / "last_good.pt"), good);
@@ -567,10 +568,10 @@ TEST(Trainer, WalkerLearnsToMoveForward) {
       "value: {hidden: [64, 64]}\n"
       "ppo: {epochs: 10, value_epochs: 10, minibatch: 64, kl_target: 0.02}\n";
   Trainer t(config(text));
-  const double before = t.evaluate(8);
+  const double before = test::evaluate(t, 8);
   std::vector<double> returns;
   for (int i = 0; i < 16; ++i) returns.push_back(t.iterate().get("return"));
-  const double after = t.evaluate(8);
+  const double after = test::evaluate(t, 8);
   const double late = (returns[13] + returns[14] + returns[15]) / 3;
   std::cout << "[ figures  ] return in iteration 1: " << returns[0] << ", iterations 14-16: " << returns[13] << ", " << returns[14] << ", "
             << returns[15] << "; mean-action return before: " << before << ", after: " << after << "\n";
