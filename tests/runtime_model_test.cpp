@@ -322,3 +322,111 @@ TEST(RuntimeController, EnvironmentSettingsApplyAndProjectilesAreNotTakenForAnot
 }
 
 }  // namespace
+
+namespace {
+
+// Seed 004 section 5.3's switch: a request is granted after the first step whose state the
+// target's discriminators score >= tau, waits while they score below, waits out the delay after a
+// take-over, and is dropped (and said so) when no step allows it within the time limit.
+TEST(RuntimeController, ARequestedSkillTakesOverWhenItsDiscriminatorsScoreTheStateAboveTau) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
+  const auto walk = Skill::load(models / "humanoid_walk_iccgan", "walk");
+  const auto run = Skill::load(models / "humanoid_run_iccgan_straight_loop", "run");
+  // Two controllers on the same seed walk the same trajectory: the run's score of each step's
+  // state is known beforehand.
+  std::vector<double> run_scores;
+  {
+    Controller probe({walk, run}, 3);
+    for (int i = 0; i < 30; ++i) {
+      ASSERT_FALSE(probe.step().episode_over);
+      run_scores.push_back(probe.score("run"));
+    }
+    EXPECT_EQ(probe.skill(), "walk");  // scoring a skill hands nothing over
+    const double walk_score = probe.score("walk");
+    EXPECT_GT(walk_score, 0.0) << "the walk's discriminator finds its own walking expert-like";
+    EXPECT_GE(walk_score, -1.0);
+    EXPECT_LE(walk_score, 1.0);
+    EXPECT_THROW((void)probe.score("jump"), Error);
+  }
+  // The hand-made pair: tau just above the run's score at step 10 makes that step wait; just
+  // below the first later step's that reaches it makes that one switch.
+  const auto first_at_least = [&](double tau, std::size_t from) {
+    for (std::size_t i = from; i < run_scores.size(); ++i)
+      if (run_scores[i] >= tau) return static_cast<int>(i);
+    return -1;
+  };
+  const double tau = run_scores[10] + 1e-6;
+  const int expected = first_at_least(tau, 10);
+  ASSERT_GT(expected, 10) << "the walk's states must come to score higher under the run's discriminators than at step 10";
+  Controller c({walk, run}, 3);
+  SwitchRule rule;
+  rule.threshold = tau;
+  rule.time_limit_seconds = 100.0;
+  c.set_switch_rule(rule);
+  for (int i = 0; i < 10; ++i) c.step();
+  c.request("run");
+  EXPECT_EQ(c.requested(), "run");
+  int switched = -1;
+  for (int i = 10; i < 30 && switched < 0; ++i) {
+    const StepInfo info = c.step();
+    EXPECT_NEAR(info.target_score, run_scores[static_cast<std::size_t>(i)], 1e-12);
+    if (!info.switched_to.empty()) {
+      EXPECT_EQ(info.switched_to, "run");
+      switched = i;
+    } else {
+      EXPECT_LT(info.target_score, tau);
+      EXPECT_EQ(c.skill(), "walk");
+    }
+  }
+  EXPECT_EQ(switched, expected) << "the first step the run's discriminators score >= tau";
+  EXPECT_EQ(c.skill(), "run");
+  EXPECT_TRUE(c.requested().empty());
+}
+
+TEST(RuntimeController, TheDelayHoldsAndARequestNoStepAllowsIsDropped) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
+  Controller c({Skill::load(models / "humanoid_walk_iccgan", "walk"), Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")}, 3);
+  SwitchRule rule;
+  rule.by = SwitchRule::By::Immediately;
+  rule.delay_steps = 7;
+  c.set_switch_rule(rule);
+  c.request("run");
+  StepInfo info = c.step();
+  EXPECT_EQ(info.switched_to, "run");  // at once: after the first step
+  // Back to the walk at once, but not before the run has had its 7 steps.
+  c.request("walk");
+  int waited = 0;
+  for (info = c.step(); info.switched_to.empty(); info = c.step()) ++waited;
+  EXPECT_EQ(waited, 6) << "granted after the 7th step since the take-over";
+  EXPECT_EQ(c.skill(), "walk");
+  // A score no state reaches: dropped after the time limit (15 steps at 30 Hz), and reported.
+  rule.by = SwitchRule::By::Score;
+  rule.threshold = 1.5;  // above the score's range
+  rule.delay_steps = 0;
+  rule.time_limit_seconds = 0.5;
+  c.set_switch_rule(rule);
+  c.request("run");
+  int steps = 0;
+  for (info = c.step(); info.dropped.empty(); info = c.step()) {
+    ++steps;
+    ASSERT_TRUE(info.switched_to.empty());
+    ASSERT_LT(steps, 100);
+  }
+  EXPECT_EQ(steps + 1, 15);
+  EXPECT_EQ(info.dropped, "run");
+  EXPECT_EQ(c.skill(), "walk");
+  EXPECT_TRUE(c.requested().empty());
+  // Asking for the active skill cancels a request; bad rules and names are errors.
+  c.request("run");
+  c.request("walk");
+  EXPECT_TRUE(c.requested().empty());
+  rule.delay_steps = -1;
+  EXPECT_THROW(c.set_switch_rule(rule), Error);
+  EXPECT_TRUE(contains(error_of([&] { c.request("jump"); }), "no skill 'jump' in this controller (it has walk, run)"));
+}
+
+}  // namespace

@@ -12,6 +12,7 @@
 // shared by any number of controllers and threads; a Controller is the changing state of one
 // character and belongs to one thread at a time.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -77,6 +78,24 @@ struct StepInfo {
   bool episode_over = false;  // the skill's environment ended the episode (below: why)
   bool fell = false;          // a fall or a drift from the reference: a failure
   std::string ending;         // "fall", "time limit", "clip end", "drift"; empty while it goes on
+  std::string switched_to;    // a requested skill took over after this step (it acts from the next)
+  std::string dropped;        // a request that no step allowed within the rule's time limit
+  double target_score = std::nan("");  // the pending request's figure at this step, as the rule measures it
+};
+
+// When a requested skill takes over (seed 004 section 5.3). By its score: the mean over its
+// discriminator ensemble's heads of clip(D_i, -1, 1) for the character's current trajectory (the
+// frames its discriminator sees) reaches `threshold` (eq. 6's tau). By its value: its value
+// network's estimate of the current state reaches `threshold` (the paper's baseline). Or at once.
+struct SwitchRule {
+  enum class By { Score, Value, Immediately };
+  By by = By::Score;
+  double threshold = 0.2;
+  // After a skill takes over, requests wait this many control steps (seed 004: 20 frames after a
+  // jump, so that it is done before another policy is asked).
+  int delay_steps = 0;
+  // A request that no step allows within this is dropped, and the step says so.
+  double time_limit_seconds = 2.0;
 };
 
 // One character in one MuJoCo world, driven by one of a set of skills of that character.
@@ -93,9 +112,21 @@ class Controller {
   void reset();
   // One control step: the active skill's policy mean, applied through its PD targets.
   StepInfo step();
-  // Hands the character, in its current state (pose and velocities), to another skill. Throws
-  // mimic::Error naming the skills it knows when `skill` is not one of them.
+  // Hands the character, in its current state (pose, velocities and its last poses), to another
+  // skill now. Throws mimic::Error naming the skills it knows when `skill` is not one of them.
   void switch_to(const std::string& skill);
+  // Asks for `skill`: it takes over after the first step whose state the switch rule allows, or
+  // the request is dropped after the rule's time limit (StepInfo says which). A new request
+  // replaces a pending one; asking for the active skill cancels it.
+  void request(const std::string& skill);
+  const std::string& requested() const;  // the pending request; empty when none
+  void set_switch_rule(const SwitchRule& rule);
+  const SwitchRule& switch_rule() const;
+  // The skill's switch score of the character's current state, in [-1, 1] (seed 004 eq. 6), and
+  // its value network's estimate; what the rule compares with its threshold. The score throws for
+  // a skill without discriminators (Skill::discriminators()).
+  double score(const std::string& skill);
+  double value(const std::string& skill);
 
   const std::string& skill() const;  // the active one's name
   const std::vector<std::shared_ptr<const Skill>>& skills() const;

@@ -25,6 +25,10 @@ const char* ending_name(Termination t) {
 
 }  // namespace
 
+// How many of the character's last states are kept for a hand-over: the link history an
+// environment observes (env.link_history) reads at most this many.
+constexpr std::size_t kKeptStates = 16;
+
 struct Controller::Impl {
   std::vector<std::shared_ptr<const Skill>> skills;
   std::vector<std::unique_ptr<Env>> envs;  // one per skill: its own observation and action mapping
@@ -34,6 +38,12 @@ struct Controller::Impl {
   Eigen::VectorXd input, action;
   long long steps = 0;
   double dt = 0.0;  // control step, seconds
+  // The character's last states (pose, velocities), oldest first, the newest the current one.
+  std::deque<std::pair<Pose, PoseVelocity>> states;
+  SwitchRule rule;
+  std::size_t pending = 0;  // the requested skill; == skills.size(): none
+  long long waited = 0;     // steps since the request
+  int delay_left = 0;       // steps before a request may be granted
 
   Env& env() { return *envs[active]; }
   const Skill& skill() const { return *skills[active]; }
@@ -41,6 +51,46 @@ struct Controller::Impl {
     frames.assign(static_cast<std::size_t>(skill().history()), first);
     steps = 0;
   }
+  std::size_t index_of(const std::string& name) const {
+    std::string names;
+    for (std::size_t i = 0; i < skills.size(); ++i) {
+      if (skills[i]->name() == name) return i;
+      names += (i ? ", " : "") + skills[i]->name();
+    }
+    throw Error("no skill '" + name + "' in this controller (it has " + names + ")");
+  }
+  // Keeps the active world's state (after a reset or a step) for hand-overs and scores.
+  void remember() {
+    const CharacterEnv* c = character_of(env());
+    if (!c) return;
+    states.emplace_back(c->world().pose(), c->world().velocity());
+    while (states.size() > kKeptStates) states.pop_front();
+  }
+  // Skill `target`'s environment put in the character's state `back` states ago, with the states
+  // before it as its past; returns that environment's observation.
+  Eigen::VectorXd place(std::size_t target, std::size_t back) {
+    CharacterEnv* from = character_of(env());
+    CharacterEnv* to = character_of(*envs[target]);
+    if (!from || !to) throw Error("skill '" + skills[target]->name() + "': only character environments hand a character over");
+    if (states.size() <= back) throw Error("skill '" + skills[target]->name() + "': the character has no state " + std::to_string(back) + " steps ago");
+    InitState state;
+    const std::size_t at = states.size() - 1 - back;
+    state.pose = states[at].first;
+    state.velocity = states[at].second;
+    state.time = from->time() - static_cast<double>(back) * dt;
+    for (std::size_t k = 0; k < at; ++k) state.past.push_back(states[k].first);
+    return to->reset(state);
+  }
+  void hand_over(std::size_t target) {
+    const Eigen::VectorXd first = place(target, 0);
+    const long long kept = steps;
+    active = target;
+    begin(first);
+    steps = kept;
+  }
+  // The rule's figure for `target` in the current state.
+  double measure(std::size_t target, SwitchRule::By by);
+
   void stack() {
     const Skill& s = skill();
     input.resize(s.input_size());
@@ -71,7 +121,14 @@ Controller::Controller(std::vector<std::shared_ptr<const Skill>> skills, std::ui
 
 Controller::~Controller() = default;
 
-void Controller::reset() { impl_->begin(impl_->env().reset(impl_->rng)); }
+void Controller::reset() {
+  Impl& c = *impl_;
+  c.begin(c.env().reset(c.rng));
+  c.states.clear();
+  c.remember();
+  c.pending = c.skills.size();
+  c.delay_left = 0;
+}
 
 StepInfo Controller::step() {
   Impl& c = *impl_;
@@ -84,35 +141,84 @@ StepInfo Controller::step() {
   ++c.steps;
   c.frames.pop_front();
   c.frames.push_back(r.observation);
+  c.remember();
   StepInfo info;
   info.episode_over = r.done();
   info.fell = is_failure(r.termination);
   info.ending = ending_name(r.termination);
+  if (c.delay_left > 0) --c.delay_left;
+  if (c.pending < c.skills.size()) {
+    ++c.waited;
+    const std::size_t target = c.pending;
+    if (c.delay_left == 0) {
+      const bool now = c.rule.by == SwitchRule::By::Immediately;
+      if (!now) info.target_score = c.measure(target, c.rule.by);
+      if (now || info.target_score >= c.rule.threshold) {
+        c.hand_over(target);
+        c.pending = c.skills.size();
+        c.delay_left = c.rule.delay_steps;
+        info.switched_to = c.skill().name();
+        return info;
+      }
+    }
+    if (static_cast<double>(c.waited) * c.dt >= c.rule.time_limit_seconds - 1e-9) {
+      info.dropped = c.skills[target]->name();
+      c.pending = c.skills.size();
+    }
+  }
   return info;
+}
+
+double Controller::Impl::measure(std::size_t target, SwitchRule::By by) {
+  const Skill& t = *skills[target];
+  // The active skill's own environment observes the character already (placing it would restart
+  // its episode); another skill's is put in the character's state.
+  const bool own = target == active;
+  const Eigen::VectorXd now = own ? frames.back() : place(target, 0);
+  const Eigen::VectorXd fresh = now.replicate(t.history(), 1);  // a fresh history: the current frame repeated
+  if (by == SwitchRule::By::Value) return t.value(Eigen::MatrixXd(fresh.transpose()))[0];
+  const SkillDiscriminator* d = nullptr;
+  for (const SkillDiscriminator& candidate : t.impl().discriminators)
+    if (!d) d = &candidate;
+  if (!d) throw Error("skill '" + t.name() + "' has no discriminator to score with (its networks.mimic holds none)");
+  if (d->contexts > 0 || d->context >= 0) throw Error("skill '" + t.name() + "': its discriminator scores under a behaviour context");
+  const Eigen::MatrixXd next = now.transpose();
+  Eigen::MatrixXd before = next, acted = Eigen::MatrixXd::Zero(1, t.action_size());
+  if (d->transition == "ss")
+    before = (own ? (frames.size() > 1 ? frames[frames.size() - 2] : frames.back()) : place(target, std::min<std::size_t>(1, states.size() - 1)))
+                 .transpose();
+  if (d->transition == "ss" && !own) (void)place(target, 0);  // left in the current state
+  if (d->transition == "sa") acted = t.act(Eigen::MatrixXd(fresh.transpose()));
+  return d->switch_scores(before, next, acted, -1)[0];
 }
 
 void Controller::switch_to(const std::string& name) {
   Impl& c = *impl_;
-  std::size_t target = c.skills.size();
-  std::string names;
-  for (std::size_t i = 0; i < c.skills.size(); ++i) {
-    if (c.skills[i]->name() == name) target = i;
-    names += (i ? ", " : "") + c.skills[i]->name();
-  }
-  if (target == c.skills.size()) throw Error("no skill '" + name + "' in this controller (it has " + names + ")");
-  if (target == c.active) return;
-  CharacterEnv* from = character_of(c.env());
-  CharacterEnv* to = character_of(*c.envs[target]);
-  if (!from || !to) throw Error("skill '" + name + "': only character environments hand a character over");
-  InitState state;
-  state.pose = from->world().pose();
-  state.velocity = from->world().velocity();
-  state.time = from->time();
-  const long long steps = c.steps;
-  c.active = target;
-  c.begin(to->reset(state));
-  c.steps = steps;
+  const std::size_t target = c.index_of(name);
+  if (target != c.active) c.hand_over(target);
 }
+
+void Controller::request(const std::string& name) {
+  Impl& c = *impl_;
+  const std::size_t target = c.index_of(name);
+  c.pending = target == c.active ? c.skills.size() : target;
+  c.waited = 0;
+}
+
+const std::string& Controller::requested() const {
+  static const std::string none;
+  return impl_->pending < impl_->skills.size() ? impl_->skills[impl_->pending]->name() : none;
+}
+
+void Controller::set_switch_rule(const SwitchRule& rule) {
+  if (rule.delay_steps < 0 || !(rule.time_limit_seconds >= 0) || !std::isfinite(rule.threshold))
+    throw Error("switch rule: the delay must be >= 0 steps, the time limit >= 0 s and the threshold finite");
+  impl_->rule = rule;
+}
+const SwitchRule& Controller::switch_rule() const { return impl_->rule; }
+
+double Controller::score(const std::string& skill) { return impl_->measure(impl_->index_of(skill), SwitchRule::By::Score); }
+double Controller::value(const std::string& skill) { return impl_->measure(impl_->index_of(skill), SwitchRule::By::Value); }
 
 const std::string& Controller::skill() const { return impl_->skill().name(); }
 const std::vector<std::shared_ptr<const Skill>>& Controller::skills() const { return impl_->skills; }

@@ -65,8 +65,8 @@ SkillDiscriminator SkillDiscriminator::read(const ArrayTable& t, int index, int 
   return d;
 }
 
-Eigen::VectorXd SkillDiscriminator::rewards(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions,
-                                            int held) const {
+FloatMatrix SkillDiscriminator::outputs(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions,
+                                        int held) const {
   const Eigen::Index n = next_obs.rows();
   const int needed = columns.empty() ? 0 : *std::max_element(columns.begin(), columns.end()) + 1;
   auto fits = [&](const Eigen::MatrixXd& m, const char* what) {
@@ -100,7 +100,13 @@ Eigen::VectorXd SkillDiscriminator::rewards(const Eigen::MatrixXd& obs, const Ei
       for (int k = 0; k < action_size; ++k) x(i, w + k) = static_cast<float>(actions(i, k));
   }
   x = ((x.rowwise() - input_mean).array().rowwise() / input_std.array()).matrix();
-  const FloatMatrix out = net.forward(x);
+  return net.forward(x);
+}
+
+Eigen::VectorXd SkillDiscriminator::rewards(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions,
+                                            int held) const {
+  const FloatMatrix out = outputs(obs, next_obs, actions, held);
+  const Eigen::Index n = out.rows();
   const auto clip = static_cast<float>(reward_clip);
   Eigen::VectorXd r(n);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -113,6 +119,21 @@ Eigen::VectorXd SkillDiscriminator::rewards(const Eigen::MatrixXd& obs, const Ei
       else sum += std::clamp(o, -clip, clip);
     }
     r[i] = static_cast<double>(sum / static_cast<float>(out.cols()) + static_cast<float>(reward_offset));
+  }
+  return r;
+}
+
+Eigen::VectorXd SkillDiscriminator::switch_scores(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions,
+                                                  int held) const {
+  const FloatMatrix out = outputs(obs, next_obs, actions, held);
+  Eigen::VectorXd r(out.rows());
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {
+    double sum = 0;
+    for (Eigen::Index h = 0; h < out.cols(); ++h) {
+      const double o = out(i, h);
+      sum += loss == "hinge" ? std::clamp(o, -1.0, 1.0) : 2.0 / (1.0 + std::exp(-o)) - 1.0;
+    }
+    r[i] = sum / static_cast<double>(out.cols());
   }
   return r;
 }

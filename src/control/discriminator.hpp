@@ -32,6 +32,12 @@ struct SkillDiscriminator {
   // The reward of each transition (rows: observation frames without their context, the next
   // frames, the actions) under behaviour context `held` (-1 where the features have none).
   Eigen::VectorXd rewards(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions, int held) const;
+  // Seed 004 eq. 6's switch score of the same transitions, in [-1, 1] whatever the reward's offset:
+  // the mean over heads of clip(D_i, -1, 1) for the hinge ensemble; for GAIL's classifier the mean
+  // of 2 sigmoid(logit) - 1 (its probability of the expert, on the same scale).
+  Eigen::VectorXd switch_scores(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions, int held) const;
+  // The network's outputs [rows, heads] for the transitions' standardised features.
+  FloatMatrix outputs(const Eigen::MatrixXd& obs, const Eigen::MatrixXd& next_obs, const Eigen::MatrixXd& actions, int held) const;
 };
 
 }  // namespace mimic
