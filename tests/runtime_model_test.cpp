@@ -13,6 +13,7 @@
 #include "core/array_file.hpp"
 #include "core/file_io.hpp"
 #include "error_message.hpp"
+#include "control/transitions.hpp"
 #include "mimic/runtime.hpp"
 #include "test_data.hpp"
 
@@ -427,6 +428,61 @@ TEST(RuntimeController, TheDelayHoldsAndARequestNoStepAllowsIsDropped) {
   rule.delay_steps = -1;
   EXPECT_THROW(c.set_switch_rule(rule), Error);
   EXPECT_TRUE(contains(error_of([&] { c.request("jump"); }), "no skill 'jump' in this controller (it has walk, run)"));
+}
+
+}  // namespace
+
+namespace {
+
+// The transition test's bookkeeping: every ordered pair, each rule; a tau no state reaches
+// switches nothing; switching at once always switches, at the first step after the request.
+TEST(RuntimeTransitions, EveryOrderedPairUnderEachRuleOnTheSameTrials) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
+  const std::vector<std::shared_ptr<const Skill>> skills = {Skill::load(models / "humanoid_walk_iccgan", "walk"),
+                                                            Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")};
+  TransitionOptions o;
+  o.trials = 2, o.thresholds = {1.01}, o.hold_seconds = 0.5, o.time_limit_seconds = 0.3, o.earliest_request = 0.2, o.latest_request = 0.5;
+  std::vector<std::string> seen;
+  const std::vector<TransitionCell> cells =
+      measure_transitions(skills, o, [&](const TransitionCell& c) { seen.push_back(c.from + ">" + c.to + " " + c.rule); });
+  EXPECT_EQ(seen, (std::vector<std::string>{"walk>run score", "walk>run immediately", "run>walk score", "run>walk immediately"}));
+  for (const TransitionCell& c : cells) {
+    EXPECT_EQ(c.trials, 2);
+    if (c.rule == "score") {
+      EXPECT_EQ(c.switched, 0) << c.from << " > " << c.to << ": tau 1.01 is above every score";
+      EXPECT_TRUE(std::isnan(c.mean_wait));
+    } else {
+      EXPECT_EQ(c.switched, 2);
+      EXPECT_NEAR(c.mean_wait, 1.0 / 30.0, 1e-9);
+      EXPECT_LE(c.succeeded + c.fell, c.switched);
+    }
+  }
+  EXPECT_THROW(measure_transitions({skills[0]}, o), Error);
+}
+
+}  // namespace
+
+namespace {
+
+// The hand-over is faithful: the same walk handed its own state (pose, velocities, last poses) by
+// a switch to a second copy walks on as the first would have, without going down.
+TEST(RuntimeController, ASkillHandedItsOwnStateCarriesOn) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const std::filesystem::path walk = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / "humanoid_walk_iccgan";
+  Controller c({Skill::load(walk, "walk"), Skill::load(walk, "walk_again")}, 11);
+  for (int i = 0; i < 40; ++i) ASSERT_FALSE(c.step().fell);
+  const Eigen::Vector3d before = c.root_position();
+  c.switch_to("walk_again");
+  double lowest = before.z();
+  for (int i = 0; i < 60; ++i) {
+    ASSERT_FALSE(c.step().fell) << "step " << i << " after the hand-over";
+    lowest = std::min(lowest, c.root_position().z());
+  }
+  EXPECT_GT(lowest, 0.75);
+  EXPECT_GT((c.root_position() - before).head<2>().norm(), 1.5) << "it walked on: 2 s at the walk's pace";
 }
 
 }  // namespace

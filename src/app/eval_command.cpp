@@ -24,6 +24,7 @@
 #include "app/run_skill.hpp"
 #include "control/episodes.hpp"
 #include "control/runtime_cost.hpp"
+#include "control/transitions.hpp"
 #include "control/skill_impl.hpp"
 
 namespace mimic::app {
@@ -60,6 +61,8 @@ struct EvalArgs {
   bool stochastic = false;
   std::uint64_t seed = 12345;
   std::vector<std::string> settings;  // env.KEY=VALUE overrides of the run's config, in memory
+  std::vector<std::filesystem::path> transitions;  // other skills of the character: switch to and from each
+  int transition_trials = 20;
 };
 
 // The `count` links with the largest values of a per-link vector, largest first: "right_wrist 0.312, ...".
@@ -212,6 +215,33 @@ std::string context_switches(const EvalArgs& args, const std::shared_ptr<const S
   return json + "]";
 }
 
+// Seed 004 section 6.5's transition test between this skill and the others (control/transitions.hpp).
+std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>& skill) {
+  std::vector<std::shared_ptr<const Skill>> skills{skill};
+  for (const auto& other : args.transitions) skills.push_back(run_skill(other, args.settings, /*discriminators=*/true));
+  TransitionOptions o;
+  o.trials = args.transition_trials;
+  o.seed = args.seed;
+  spdlog::info("  transitions     {} skills, every ordered pair; {} trials per rule; request {:.0f}-{:.0f} s into the first skill (40-80 % of a "
+               "shorter episode); success: "
+               "the second takes over within {:.0f} s and stays up {:.0f} s with its score above {:.1f} over the last second",
+               skills.size(), o.trials, o.earliest_request, o.latest_request, o.time_limit_seconds, o.hold_seconds, o.performing_score);
+  std::string json = ", \"transitions\": {\"hold_seconds\": " + json_number(o.hold_seconds) + ", \"time_limit_seconds\": " +
+                     json_number(o.time_limit_seconds) + ", \"performing_score\": " + json_number(o.performing_score) + ", \"cells\": [";
+  bool first = true;
+  (void)measure_transitions(skills, o, [&](const TransitionCell& c) {
+    spdlog::info("    {} -> {}  {:<11} {}  success {:3.0f} % ({} of {}), switched {}, fell {}, wait {:.2f} s", c.from, c.to, c.rule,
+                 c.rule == "score" ? fmt::format("tau {:.1f}", c.threshold) : std::string(7, ' '), 100.0 * c.success_rate(), c.succeeded,
+                 c.trials, c.switched, c.fell, c.mean_wait);
+    json += fmt::format("{}{{\"from\": {}, \"to\": {}, \"rule\": \"{}\", \"threshold\": {}, \"trials\": {}, \"switched\": {}, "
+                        "\"succeeded\": {}, \"fell\": {}, \"success_rate\": {}, \"mean_wait\": {}}}",
+                        first ? "" : ", ", json_string(c.from), json_string(c.to), c.rule, json_number(c.threshold), c.trials, c.switched,
+                        c.succeeded, c.fell, json_number(c.success_rate()), json_number(c.mean_wait));
+    first = false;
+  });
+  return json + "]}";
+}
+
 void evaluate(const EvalArgs& args) {
   // Only the environment may change: the policy's shape and training are the checkpoint's.
   for (const std::string& setting : args.settings)
@@ -291,6 +321,7 @@ void evaluate(const EvalArgs& args) {
   if (!args.masses.empty()) json += robustness(args, networks);
   if (!args.switches.empty()) json += context_switches(args, skill);
   if (args.latency) json += latency(args, skill);
+  if (!args.transitions.empty()) json += transitions(args, run_skill(args.run, args.settings, /*discriminators=*/true));
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 
@@ -321,6 +352,12 @@ void add_eval_command(CLI::App& app) {
   ev->add_option("--switch-seconds", args->switch_seconds, "how long each context of a switch is held")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  ev->add_option("--transitions", args->transitions,
+                 "other skills of the same character (model directories): seed 004's transition test between every ordered pair "
+                 "(score rule at tau -0.6, -0.4, ..., 1, and switching at once)")
+      ->delimiter(',')
+      ->check(CLI::ExistingDirectory);
+  ev->add_option("--transition-trials", args->transition_trials, "trials per pair, rule and tau")->capture_default_str()->check(CLI::PositiveNumber);
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();
