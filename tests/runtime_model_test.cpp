@@ -277,11 +277,17 @@ TEST(DenseKernel, ALayerIsPinnedByHandAndBothPathsAgreeOnEveryBlockShape) {
 
 namespace {
 
+// The committed walk and run as skills "walk" and "run" (the humanoid reads ../shared/data: a test
+// checks for it first).
+std::vector<std::shared_ptr<const Skill>> walk_and_run() {
+  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
+  return {Skill::load(models / "humanoid_walk_iccgan", "walk"), Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")};
+}
+
 TEST(RuntimeController, ASwitchHandsTheCharactersStateToTheOtherSkillWhichCarriesOn) {
   std::filesystem::path data;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
-  Controller c({Skill::load(models / "humanoid_walk_iccgan", "walk"), Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")}, 5);
+  Controller c(walk_and_run(), 5);
   EXPECT_NEAR(c.control_dt(), 1.0 / 30.0, 1e-12);
   for (int i = 0; i < 45; ++i) ASSERT_FALSE(c.step().episode_over);
   const Eigen::Vector3d before = c.root_position();
@@ -332,9 +338,9 @@ namespace {
 TEST(RuntimeController, ARequestedSkillTakesOverWhenItsDiscriminatorsScoreTheStateAboveTau) {
   std::filesystem::path data;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
-  const auto walk = Skill::load(models / "humanoid_walk_iccgan", "walk");
-  const auto run = Skill::load(models / "humanoid_run_iccgan_straight_loop", "run");
+  const std::vector<std::shared_ptr<const Skill>> skills = walk_and_run();
+  const auto& walk = skills[0];
+  const auto& run = skills[1];
   // Two controllers on the same seed walk the same trajectory: the run's score of each step's
   // state is known beforehand.
   std::vector<double> run_scores;
@@ -389,8 +395,7 @@ TEST(RuntimeController, ARequestedSkillTakesOverWhenItsDiscriminatorsScoreTheSta
 TEST(RuntimeController, TheDelayHoldsAndARequestNoStepAllowsIsDropped) {
   std::filesystem::path data;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
-  Controller c({Skill::load(models / "humanoid_walk_iccgan", "walk"), Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")}, 3);
+  Controller c(walk_and_run(), 3);
   SwitchRule rule;
   rule.by = SwitchRule::By::Immediately;
   rule.delay_steps = 7;
@@ -439,9 +444,7 @@ namespace {
 TEST(RuntimeTransitions, EveryOrderedPairUnderEachRuleOnTheSameTrials) {
   std::filesystem::path data;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
-  const std::filesystem::path models = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
-  const std::vector<std::shared_ptr<const Skill>> skills = {Skill::load(models / "humanoid_walk_iccgan", "walk"),
-                                                            Skill::load(models / "humanoid_run_iccgan_straight_loop", "run")};
+  const std::vector<std::shared_ptr<const Skill>> skills = walk_and_run();
   TransitionOptions o;
   o.trials = 2, o.thresholds = {1.01}, o.hold_seconds = 0.5, o.time_limit_seconds = 0.3, o.earliest_request = 0.2, o.latest_request = 0.5;
   std::vector<std::string> seen;
