@@ -1,7 +1,9 @@
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <deque>
 #include <random>
+#include <tuple>
 
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
@@ -38,8 +40,13 @@ struct Controller::Impl {
   Eigen::VectorXd input, action;
   long long steps = 0;
   double dt = 0.0;  // control step, seconds
-  // The character's last states (pose, velocities), oldest first, the newest the current one.
-  std::deque<std::pair<Pose, PoseVelocity>> states;
+  // The character's last states, oldest first, the newest the current one: MuJoCo's qpos and qvel
+  // of the environment they were read from (a copy each step; poses are made only when needed).
+  struct RawState {
+    std::size_t env = 0;
+    std::vector<double> qpos, qvel;
+  };
+  std::deque<RawState> states;
   SwitchRule rule;
   std::size_t pending = 0;  // the requested skill; == skills.size(): none
   long long waited = 0;     // steps since the request
@@ -61,10 +68,29 @@ struct Controller::Impl {
   }
   // Keeps the active world's state (after a reset or a step) for hand-overs and scores.
   void remember() {
-    const CharacterEnv* c = character_of(env());
-    if (!c) return;
-    states.emplace_back(c->world().pose(), c->world().velocity());
-    while (states.size() > kKeptStates) states.pop_front();
+    const mjModel* m = env().physics_model();
+    const mjData* d = env().physics_data();
+    if (!m || !d || !character_of(env())) return;
+    RawState s = states.size() >= kKeptStates ? std::move(states.front()) : RawState{};
+    if (states.size() >= kKeptStates) states.pop_front();
+    s.env = active;
+    s.qpos.assign(d->qpos, d->qpos + m->nq);
+    s.qvel.assign(d->qvel, d->qvel + m->nv);
+    states.push_back(std::move(s));
+  }
+  // A kept state as the character's pose and velocities, read through the world it came from
+  // (its MuJoCo state written in for the reading, then put back).
+  std::pair<Pose, PoseVelocity> decode(const RawState& s) {
+    CharacterEnv* c = character_of(*envs[s.env]);
+    mjData* d = envs[s.env]->physics_data();
+    const mjModel* m = envs[s.env]->physics_model();
+    const std::vector<double> qpos(d->qpos, d->qpos + m->nq), qvel(d->qvel, d->qvel + m->nv);
+    std::copy(s.qpos.begin(), s.qpos.end(), d->qpos);
+    std::copy(s.qvel.begin(), s.qvel.end(), d->qvel);
+    std::pair<Pose, PoseVelocity> out(c->world().pose(), c->world().velocity());
+    std::copy(qpos.begin(), qpos.end(), d->qpos);
+    std::copy(qvel.begin(), qvel.end(), d->qvel);
+    return out;
   }
   // Skill `target`'s environment put in the character's state `back` states ago, with the states
   // before it as its past; returns that environment's observation.
@@ -75,10 +101,9 @@ struct Controller::Impl {
     if (states.size() <= back) throw Error("skill '" + skills[target]->name() + "': the character has no state " + std::to_string(back) + " steps ago");
     InitState state;
     const std::size_t at = states.size() - 1 - back;
-    state.pose = states[at].first;
-    state.velocity = states[at].second;
+    std::tie(state.pose, state.velocity) = decode(states[at]);
     state.time = from->time() - static_cast<double>(back) * dt;
-    for (std::size_t k = 0; k < at; ++k) state.past.push_back(states[k].first);
+    for (std::size_t k = 0; k < at; ++k) state.past.push_back(decode(states[k]).first);
     return to->reset(state);
   }
   void hand_over(std::size_t target) {
