@@ -3,10 +3,17 @@
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 
+# MIMIC_CLI_TIMES=1 in the environment prints each command's wall time (where CI's time goes).
 function(run_ok)
+  string(TIMESTAMP t0 "%s")
   execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "mimic ${ARGN} failed (${rc}):\n${out}\n${err}")
+  endif()
+  if(DEFINED ENV{MIMIC_CLI_TIMES})
+    string(TIMESTAMP t1 "%s")
+    math(EXPR took "${t1} - ${t0}")
+    message(STATUS "${took} s: mimic ${ARGN}")
   endif()
   set(LAST_OUT "${out}${err}" PARENT_SCOPE)
 endfunction()

@@ -310,10 +310,6 @@ TEST(RuntimeController, ASwitchHandsTheCharactersStateToTheOtherSkillWhichCarrie
   EXPECT_EQ(c.skill(), "walk");
 }
 
-}  // namespace
-
-namespace {
-
 TEST(RuntimeController, EnvironmentSettingsApplyAndProjectilesAreNotTakenForAnotherCharacter) {
   std::filesystem::path data;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
@@ -327,10 +323,6 @@ TEST(RuntimeController, EnvironmentSettingsApplyAndProjectilesAreNotTakenForAnot
   EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"ppo.clip=0.1"}); }), "env keys only"));
   EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"env.no_such_key=1"}); }), "no_such_key"));
 }
-
-}  // namespace
-
-namespace {
 
 // Seed 004 section 5.3's switch: a request is granted after the first step whose state the
 // target's discriminators score >= tau, waits while they score below, waits out the delay after a
@@ -435,10 +427,6 @@ TEST(RuntimeController, TheDelayHoldsAndARequestNoStepAllowsIsDropped) {
   EXPECT_TRUE(contains(error_of([&] { c.request("jump"); }), "no skill 'jump' in this controller (it has walk, run)"));
 }
 
-}  // namespace
-
-namespace {
-
 // The transition test's bookkeeping: every ordered pair, each rule; a tau no state reaches
 // switches nothing; switching at once always switches, at the first step after the request.
 TEST(RuntimeTransitions, EveryOrderedPairUnderEachRuleOnTheSameTrials) {
@@ -464,10 +452,6 @@ TEST(RuntimeTransitions, EveryOrderedPairUnderEachRuleOnTheSameTrials) {
   }
   EXPECT_THROW(measure_transitions({skills[0]}, o), Error);
 }
-
-}  // namespace
-
-namespace {
 
 // The hand-over is faithful: the same walk handed its own state (pose, velocities, last poses) by
 // a switch to a second copy walks on as the first would have, without going down.
