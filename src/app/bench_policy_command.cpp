@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include "app/commands.hpp"
+#include "control/skill_impl.hpp"
+#include "env/context_env.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
@@ -34,14 +36,32 @@ Eigen::MatrixXd own_inputs(const std::shared_ptr<const Skill>& skill, int n) {
 
 // Control steps per second (summed over the characters) of `n` characters, each its own
 // controller stepped in turn on this thread: simulation and inference, as a game's update loop.
-double crowd_steps_per_second(const std::shared_ptr<const Skill>& skill, int n, double seconds) {
+// With a `candidate` (the same skill under another name), every controller keeps a request for
+// it pending that no state grants: the candidate's discriminators score every step, as a switch
+// waiting for its moment does.
+double crowd_steps_per_second(const std::shared_ptr<const Skill>& skill, int n, double seconds,
+                              const std::shared_ptr<const Skill>& candidate = nullptr) {
   std::vector<std::unique_ptr<Controller>> crowd;
-  for (int i = 0; i < n; ++i) crowd.push_back(std::make_unique<Controller>(std::vector{skill}, static_cast<std::uint64_t>(100 + i)));
+  SwitchRule never;
+  never.threshold = 2.0;  // above the score's range
+  never.time_limit_seconds = 1e9;
+  for (int i = 0; i < n; ++i) {
+    std::vector<std::shared_ptr<const Skill>> skills;
+    skills.reserve(2);
+    skills.push_back(skill);
+    if (candidate) skills.push_back(candidate);
+    crowd.push_back(std::make_unique<Controller>(skills, static_cast<std::uint64_t>(100 + i)));
+    crowd.back()->set_switch_rule(never);
+    if (candidate) crowd.back()->request(candidate->name());
+  }
   long long steps = 0;
   const Stopwatch clock;
   while (clock.seconds() < seconds)
     for (auto& c : crowd) {
-      if (c->step().episode_over) c->reset();
+      if (c->step().episode_over) {
+        c->reset();
+        if (candidate) c->request(candidate->name());
+      }
       ++steps;
     }
   return static_cast<double>(steps) / clock.seconds();
@@ -88,6 +108,17 @@ void add_bench_policy_command(CLI::App& bench) {
       fmt::print("  crowd of {:4d}: {:9.0f} control steps/s on one core ({:.1f} x real time at {:.0f} Hz each)\n", n, crowd.back().second,
                  crowd.back().second * dt / n, 1.0 / dt);
     }
+    // The cost of switching (seed 004 section 5.3): a request pending, its target scored every step.
+    std::vector<std::pair<int, double>> switching;
+    // (Skills with discriminators acting on a character: only a character is handed over.)
+    if (!skill->discriminators().empty() && character_of(*make_skill_env(*skill))) {
+      const std::shared_ptr<const Skill> candidate = Skill::load(args->model, skill->name() + "_candidate");
+      for (const int n : args->crowd) {
+        switching.emplace_back(n, crowd_steps_per_second(skill, n, args->seconds, candidate));
+        fmt::print("  crowd of {:4d}, a switch pending: {:9.0f} control steps/s (its target's discriminators score every step)\n", n,
+                   switching.back().second);
+      }
+    }
     if (args->json.empty()) return;
     std::string j = "{\n  \"model\": " + json_string(args->model.string()) + ",\n  \"inputs\": " + std::to_string(inputs.rows()) +
                     ",\n  \"policy_parameters\": " + std::to_string(skill->policy_parameters()) + ",\n  \"torch_free_us\": " + json_number(free1) +
@@ -96,6 +127,10 @@ void add_bench_policy_command(CLI::App& bench) {
                     ",\n  \"max_action_diff_relative\": " + json_number(max_relative) + ",\n  \"crowd\": [";
     for (std::size_t i = 0; i < crowd.size(); ++i)
       j += std::string(i ? ", " : "") + "{\"characters\": " + std::to_string(crowd[i].first) + ", \"steps_per_s\": " + json_number(crowd[i].second) + "}";
+    j += "],\n  \"crowd_switching\": [";
+    for (std::size_t i = 0; i < switching.size(); ++i)
+      j += std::string(i ? ", " : "") + "{\"characters\": " + std::to_string(switching[i].first) + ", \"steps_per_s\": " +
+           json_number(switching[i].second) + "}";
     j += "],\n  \"seconds_per_figure\": " + json_number(args->seconds) + "\n}\n";
     write_file_atomic(args->json, j);
     spdlog::info("wrote {}", args->json.string());
