@@ -68,6 +68,7 @@ struct Controller::Impl {
   }
   // Keeps the active world's state (after a reset or a step) for hand-overs and scores.
   void remember() {
+    if (skills.size() < 2) return;  // nothing to hand over to: a lone skill's steps keep nothing
     const mjModel* m = env().physics_model();
     const mjData* d = env().physics_data();
     if (!m || !d || !character_of(env())) return;
@@ -202,9 +203,7 @@ double Controller::Impl::measure(std::size_t target, SwitchRule::By by) {
   const Eigen::VectorXd now = own ? frames.back() : place(target, 0);
   const Eigen::VectorXd fresh = now.replicate(t.history(), 1);  // a fresh history: the current frame repeated
   if (by == SwitchRule::By::Value) return t.value(Eigen::MatrixXd(fresh.transpose()))[0];
-  const SkillDiscriminator* d = nullptr;
-  for (const SkillDiscriminator& candidate : t.impl().discriminators)
-    if (!d) d = &candidate;
+  const SkillDiscriminator* d = t.impl().discriminators.empty() ? nullptr : &t.impl().discriminators.front();
   if (!d) throw Error("skill '" + t.name() + "' has no discriminator to score with (its networks.mimic holds none)");
   if (d->contexts > 0 || d->context >= 0) throw Error("skill '" + t.name() + "': its discriminator scores under a behaviour context");
   const Eigen::MatrixXd next = now.transpose();
