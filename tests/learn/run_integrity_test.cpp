@@ -30,7 +30,7 @@ std::string walker(int iterations, int checkpoint_every) {
          "ppo: {epochs: 2, value_epochs: 2, minibatch: 64}\n";
 }
 
-TrainConfig config(const std::string& text) { return parse_train_config(text, "walker.yaml"); }
+TrainConfig integrity_config(const std::string& text) { return parse_train_config(text, "walker.yaml"); }
 
 // A byte of the file flipped at `at` (a fraction of its size).
 void flip_byte(const std::filesystem::path& p, double at) {
@@ -47,13 +47,13 @@ TEST(RunIntegrity, AFlippedByteInACheckpointIsRefusedAndTheResumeOffersThePrevio
   const auto dir = test::temp_dir("integrity_flip");
   TrainOptions o;
   o.run_dir = dir;
-  Trainer(config(walker(4, 2)), o).run();
+  Trainer(integrity_config(walker(4, 2)), o).run();
   ASSERT_TRUE(std::filesystem::exists(dir / "checkpoint.prev.pt"));  // iteration 2's, beside iteration 4's
   const std::string before = read_text_file(dir / "checkpoint.pt");
   flip_byte(dir / "checkpoint.pt", 0.5);
   const std::string damaged = read_text_file(dir / "checkpoint.pt");
   o.resume = true;
-  const std::string what = error_of([&] { Trainer t(config(walker(4, 2)), o); });
+  const std::string what = error_of([&] { Trainer t(integrity_config(walker(4, 2)), o); });
   EXPECT_TRUE(contains(what, (dir / "checkpoint.pt").string() + ": checkpoint is damaged, nothing of it was used")) << what;
   EXPECT_TRUE(contains(what, "fails the CRC-32 recorded when it was written")) << what;
   EXPECT_TRUE(contains(what, "the previous checkpoint " + (dir / "checkpoint.prev.pt").string() + " is intact (iteration 2)")) << what;
@@ -61,14 +61,14 @@ TEST(RunIntegrity, AFlippedByteInACheckpointIsRefusedAndTheResumeOffersThePrevio
   EXPECT_TRUE(contains(error_of([&] { Trainer::from_run(dir); }), "checkpoint is damaged")) << "eval, render, record, score";
   // As offered: the previous checkpoint resumes, and the metrics go back to its iteration.
   std::filesystem::rename(dir / "checkpoint.prev.pt", dir / "checkpoint.pt");
-  Trainer resumed(config(walker(4, 2)), o);
+  Trainer resumed(integrity_config(walker(4, 2)), o);
   EXPECT_EQ(resumed.iteration(), 2);
   EXPECT_EQ(read_metrics_csv(dir / "metrics.csv").rows.size(), 2u);
   // An exported model is checked the same way.
   resumed.run();
   resumed.export_model(dir / "model.pt");
   flip_byte(dir / "model.pt", 0.6);
-  Trainer other(config(walker(4, 2)));
+  Trainer other(integrity_config(walker(4, 2)));
   EXPECT_TRUE(contains(error_of([&] { other.load_checkpoint(dir / "model.pt"); }), "model.pt: checkpoint is damaged")) << before.size();
 }
 
@@ -77,12 +77,12 @@ TEST(RunIntegrity, AResumeRefusesAMetricsFileThatDoesNotReadBackWhole) {
   const auto dir = test::temp_dir("integrity_metrics");
   TrainOptions o;
   o.run_dir = dir;
-  Trainer(config(walker(3, 1)), o).run();
+  Trainer(integrity_config(walker(3, 1)), o).run();
   const std::string good = read_text_file(dir / "metrics.csv");
   o.resume = true;
   auto resume_with = [&](const std::string& csv) {
     std::ofstream(dir / "metrics.csv", std::ios::trunc) << csv;
-    const std::string what = error_of([&] { Trainer t(config(walker(5, 1)), o); });
+    const std::string what = error_of([&] { Trainer t(integrity_config(walker(5, 1)), o); });
     EXPECT_EQ(read_text_file(dir / "metrics.csv"), csv) << "the file was changed";
     return what;
   };
@@ -96,7 +96,7 @@ TEST(RunIntegrity, AResumeRefusesAMetricsFileThatDoesNotReadBackWhole) {
   EXPECT_TRUE(contains(bad_row, "the run was not resumed, so that no row of it is lost")) << bad_row;
   // A last row cut by a kill (no newline) is the one thing dropped unread.
   std::ofstream(dir / "metrics.csv", std::ios::trunc) << good << "4,12,0.";
-  Trainer t(config(walker(5, 1)), o);
+  Trainer t(integrity_config(walker(5, 1)), o);
   EXPECT_EQ(read_text_file(dir / "metrics.csv"), good);
 }
 
@@ -107,11 +107,11 @@ TEST(RunIntegrity, AResumedRunWritesEveryTensorBoardStepOnce) {
   TrainOptions o;
   o.run_dir = dir;
   {
-    Trainer t(config(walker(5, 2)), o);
+    Trainer t(integrity_config(walker(5, 2)), o);
     for (int i = 0; i < 3; ++i) t.iterate();  // checkpoint at 2, steps 1-3 logged: as a kill after iteration 3
   }
   o.resume = true;
-  Trainer resumed(config(walker(5, 2)), o);
+  Trainer resumed(integrity_config(walker(5, 2)), o);
   ASSERT_EQ(resumed.iteration(), 2);
   resumed.run();
   std::map<std::pair<std::string, std::int64_t>, int> seen;
@@ -123,12 +123,12 @@ TEST(RunIntegrity, AResumedRunWritesEveryTensorBoardStepOnce) {
 
 TEST(RunIntegrity, ConfigsThatCannotBeMeantAreNamedErrors) {
   // `seed: 2` then `seed: 3` was accepted (seed 2 trained).
-  EXPECT_TRUE(contains(error_of([] { config("seed: 2\nseed: 3\n"); }), "walker.yaml:2: key 'seed' is given twice (first on line 1)"));
+  EXPECT_TRUE(contains(error_of([] { integrity_config("seed: 2\nseed: 3\n"); }), "walker.yaml:2: key 'seed' is given twice (first on line 1)"));
   EXPECT_TRUE(contains(error_of([] { override_config("seed: 2\n", "c.yaml", {"ppo={clip: 0.1, clip: 0.2}"}); }), "key 'clip' is given twice"));
   // `hidden: [65536, 65536]` passed validation and died in the allocator.
   const std::string huge = walker(1, 1) + "policy: {hidden: [65536, 65536, 65536]}\n";
   const std::string text = huge.substr(0, huge.find("policy: {hidden: [16]}\n")) + huge.substr(huge.find("value:"));
-  const std::string what = error_of([&] { Trainer t(config(text)); });
+  const std::string what = error_of([&] { Trainer t(integrity_config(text)); });
   EXPECT_TRUE(contains(what, "walker.yaml: the policy (17 -> 65536 -> 65536 -> 65536 -> 6)")) << what;
   EXPECT_TRUE(contains(what, "GiB of memory")) << what;
 }
