@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "motion/clip_io.hpp"
+#include "motion/retarget.hpp"
 #include "sim/character_model.hpp"
 
 namespace mimic::app {
@@ -12,6 +13,7 @@ void add_demo_command(CLI::App& app);
 void add_render_commands(CLI::App& app);
 void add_train_commands(CLI::App& app);
 void add_imitation_commands(CLI::App& app);
+void add_imitate_command(CLI::App& app);
 void add_distill_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_report_commands(CLI::App& app);
@@ -32,6 +34,10 @@ CharacterModel character_for(const Clip& clip, const std::filesystem::path& inpu
 std::string json_string(const std::string& s);
 std::string json_number(double v);
 std::string json_numbers(const std::vector<double>& v);
+
+// What `motion retarget` and `imitate --map` print of a retargeting: scale, effector errors,
+// contacts' sliding, frames under the floor.
+std::string retarget_summary(const RetargetReport& report);
 
 // Writes a clip to .mclip, DeepMimic .txt or a .svg picture, by the extension of `out`.
 void write_motion(const Clip& clip, const std::filesystem::path& out);

@@ -5,13 +5,12 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <fstream>
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/stop_requests.hpp"
 #include "app/run_skill.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -22,9 +21,6 @@
 namespace mimic::app {
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-extern "C" void request_distill_stop(int) { g_stop.store(true); }
 
 constexpr const char* kHeader = "round,samples,kept,episode_length,episode_return,falls,loss,wall_s";
 
@@ -149,8 +145,7 @@ void add_distill_command(CLI::App& app) {
     }
     spdlog::info("distilling {} teacher{} into {} (rounds {} to {}, {} student episodes each, {} threads)", acts.size(),
                  acts.size() == 1 ? "" : "s", args->out.string(), o.first_round, o.rounds, o.episodes, cfg.collect.threads);
-    std::signal(SIGINT, request_distill_stop);
-    std::signal(SIGTERM, request_distill_stop);
+    handle_stop_signals();
     const auto start = std::chrono::steady_clock::now();
     distill(student, acts, o, [&](const DistillRound& r) {
       const double wall = progress.wall_s + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -160,9 +155,9 @@ void add_distill_command(CLI::App& app) {
       write_file_atomic(csv, progress.text);
       spdlog::info("round {:>4}  samples {:>9}  kept {:>6}  episodes {:.0f} steps, {} of {} fell  loss {:.5f}  {:.0f} s", r.round, r.samples,
                    r.kept, r.episode_length, r.falls, o.episodes, r.loss, wall);
-      return !g_stop.load();
+      return stop_requests() == 0;
     });
-    spdlog::info("{}; checkpoint {}", g_stop.load() ? "stopped" : "done", checkpoint.string());
+    spdlog::info("{}; checkpoint {}", stop_requests() > 0 ? "stopped" : "done", checkpoint.string());
   });
 }
 

@@ -12,6 +12,7 @@
 #include <numeric>
 
 #include "app/commands.hpp"
+#include "app/evaluate.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/statistics.hpp"
@@ -48,22 +49,6 @@ std::string json_numbers(const std::vector<double>& v) {
 
 namespace {
 
-struct EvalArgs {
-  std::filesystem::path run, json, clip, character;
-  int episodes = 20, trials = 20;
-  int context = -1;  // a behaviour context held for the imitation trials (-1: none given)
-  bool latency = false;
-  std::vector<int> switches;  // behaviour contexts whose every ordered pair is a switch to measure
-  double switch_seconds = 5.0;
-  std::vector<double> masses;  // robustness: projectile masses (kg)
-  int robustness_trials = 20;
-  double robustness_seconds = 10.0;
-  bool stochastic = false;
-  std::uint64_t seed = 12345;
-  std::vector<std::string> settings;  // env.KEY=VALUE overrides of the run's config, in memory
-  std::vector<std::filesystem::path> transitions;  // other skills of the character: switch to and from each
-  int transition_trials = 20;
-};
 
 // The `count` links with the largest values of a per-link vector, largest first: "right_wrist 0.312, ...".
 std::string largest_links(const ImitationReport& r, const std::vector<double>& per_link, std::size_t count) {
@@ -242,6 +227,8 @@ std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>
   return json + "]}";
 }
 
+}  // namespace
+
 void evaluate(const EvalArgs& args) {
   // Only the environment may change: the policy's shape and training are the checkpoint's.
   for (const std::string& setting : args.settings)
@@ -325,7 +312,6 @@ void evaluate(const EvalArgs& args) {
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 
-}  // namespace
 
 void add_eval_command(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();

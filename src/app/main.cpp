@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   mimic::app::add_render_commands(app);
   mimic::app::add_demo_command(app);
   mimic::app::add_train_commands(app);
+  mimic::app::add_imitate_command(app);
   mimic::app::add_imitation_commands(app);
   mimic::app::add_distill_command(app);
   mimic::app::add_eval_command(app);

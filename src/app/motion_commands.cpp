@@ -66,6 +66,19 @@ std::string clip_summary(const Clip& clip) {
       rad_to_deg(heading_angle(clip.frames.back().rot[0]) - heading_angle(clip.frames.front().rot[0])), fastest.empty() ? "-" : fastest);
 }
 
+std::string retarget_summary(const RetargetReport& report) {
+  std::string text = fmt::format("scale {:.3f}, ground shift {:+.3f} m\nend effectors against the scaled source (m): root-relative mean, max; "
+                                 "world mean, by the rotations alone -> after inverse kinematics\n",
+                                 report.scale, report.ground_shift);
+  for (const EffectorError& e : report.effectors)
+    text += fmt::format("  {:<16} {:.3f}  {:.3f}    {:.3f} -> {:.3f}\n", e.name, e.mean, e.max, e.world_mean_before_ik, e.world_mean);
+  for (const ContactReport& c : report.contacts)
+    text += fmt::format("contact {:<16} {} stance frames of the source, sliding {:.3f} -> {:.3f} m/s\n", c.name, c.stance_frames,
+                        c.sliding_before_ik, c.sliding);
+  text += fmt::format("frames with a point below the floor: {}\n", report.frames_below_floor);
+  return text;
+}
+
 void write_motion(const Clip& clip, const std::filesystem::path& out) {
   const std::string ext = out.extension().string();
   if (ext == ".mclip") save_clip(clip, out);
@@ -132,8 +145,7 @@ void add_motion_commands(CLI::App& app) {
     const Clip out = retarget(load_motion(args->input, args->load), load_target_skeleton(args->target),
                               load_retarget_map(args->map), &report);
     write_motion(out, args->output);
-    fmt::print("scale {:.3f}, ground shift {:+.3f} m\nend-effector error (root-relative, vs scaled source):\n", report.scale, report.ground_shift);
-    for (const EffectorError& e : report.effectors) fmt::print("  {:<16} mean {:.3f} m  max {:.3f} m\n", e.name, e.mean, e.max);
+    fmt::print("{}", retarget_summary(report));
     spdlog::info("wrote {}", args->output.string());
   });
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "app/commands.hpp"
+#include "app/eval_file.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
@@ -29,50 +30,6 @@ std::vector<double> smooth(const std::vector<double>& v, int window) {
     if (n > 0) out[i] = sum / n;
   }
   return out;
-}
-
-// The figures of one `mimic eval --json` file that the reports use (NaN where absent or null).
-struct EvalSummary {
-  std::string run, clip;
-  double error_mean = NAN, error_std = NAN, normalised_return = NAN, progress = NAN, episode_length = NAN, return_mean = NAN;
-  long falls = -1, down = -1, trials = 0;
-  std::vector<double> masses, frames, frames_std, max_frames;  // robustness (NaN: not in the file)
-};
-
-double number_or_nan(const YamlReader& r, const YAML::Node& map, const char* key, const std::string& where) {
-  const YAML::Node n = map[key];
-  if (!n || n.IsNull()) return NAN;
-  return r.number(n, where + " \"" + key + "\"");
-}
-
-EvalSummary read_eval_json(const std::filesystem::path& path) {
-  const YamlReader r(path.string(), '"');
-  const YAML::Node root = r.parse(read_text_file(path), path.string() + ": not an evaluation file (JSON from mimic eval --json)");
-  if (!root.IsMap()) throw Error(path.string() + ": not an evaluation file (JSON from mimic eval --json)");
-  EvalSummary s;
-  s.run = r.text(r.member(root, "run", "the evaluation"), "\"run\"");
-  s.return_mean = number_or_nan(r, root, "return_mean", "the evaluation");
-  s.episode_length = number_or_nan(r, root, "episode_length", "the evaluation");
-  if (const YAML::Node im = root["imitation"]) {
-    s.clip = r.text(r.member(im, "clip", "\"imitation\""), "\"imitation\" \"clip\"");
-    s.error_mean = number_or_nan(r, im, "error_mean", "\"imitation\"");
-    s.error_std = number_or_nan(r, im, "error_std", "\"imitation\"");
-    s.normalised_return = number_or_nan(r, im, "normalised_return", "\"imitation\"");
-    s.progress = number_or_nan(r, im, "progress", "\"imitation\"");  // null for a clip that stays put
-    s.falls = r.integer(r.member(im, "falls", "\"imitation\""), "\"imitation\" \"falls\"");
-    if (const YAML::Node d = im["down"]) s.down = r.integer(d, "\"imitation\" \"down\"");  // older files have none
-    s.trials = r.integer(r.member(im, "trials", "\"imitation\""), "\"imitation\" \"trials\"");
-  }
-  if (const YAML::Node rob = root["robustness"]) {
-    if (!rob.IsSequence()) r.fail(rob, "\"robustness\": expected a list");
-    for (const YAML::Node& p : rob) {
-      s.masses.push_back(r.number(r.member(p, "mass", "a robustness point"), "\"mass\""));
-      s.frames.push_back(r.number(r.member(p, "frames_mean", "a robustness point"), "\"frames_mean\""));
-      s.frames_std.push_back(number_or_nan(r, p, "frames_std", "a robustness point"));
-      s.max_frames.push_back(number_or_nan(r, p, "max_frames", "a robustness point"));
-    }
-  }
-  return s;
 }
 
 std::string cell(double v, const char* format) { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string("-"); }

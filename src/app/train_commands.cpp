@@ -2,34 +2,19 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
-
-#include <unistd.h>
 
 #include "app/commands.hpp"
+#include "app/stop_requests.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "learn/runtime_format.hpp"
 #include "learn/train_bench.hpp"
-#include "learn/runtime_format.hpp"
 #include "learn/trainer.hpp"
 
 namespace mimic::app {
 
 namespace {
-
-// Ctrl-C or SIGTERM: the first stops the run within a collection step or a learning minibatch and
-// saves its last completed iteration; a second exits at once (the checkpoint on disk stays: every
-// write of it is atomic).
-std::atomic<int> g_stops{0};
-extern "C" void request_stop(int) {
-  if (g_stops.fetch_add(1) == 0) return;
-  static const char message[] = "\nsecond stop request: exiting at once; the last checkpoint on disk is kept\n";
-  (void)!::write(STDERR_FILENO, message, sizeof message - 1);
-  ::_exit(130);
-}
 
 std::string join_names(const std::vector<std::string>& names) {
   std::string out;
@@ -86,15 +71,14 @@ void add_train_commands(CLI::App& app) {
     opts.resume = args->resume;
     opts.init_from = args->init_from;
     opts.init_discriminators_from = args->init_discriminators_from;
-    opts.stop_requests = [] { return g_stops.load(); };
+    opts.stop_requests = stop_requests;
     opts.on_iteration = [](const IterationMetrics& m) {
       spdlog::info("iter {:>5}  samples {:>9}  return {:>9}  len {:>6}  kl {:>8}  ent {:>7}  ev {:>6}  {:>7} samples/s",
                    m.iteration, cell(m, "samples", "{:.0f}"), cell(m, "return", "{:.2f}"), cell(m, "episode_length", "{:.0f}"),
                    cell(m, "kl", "{:.4f}"), cell(m, "entropy", "{:.2f}"), cell(m, "explained_variance", "{:.2f}"),
                    cell(m, "samples_per_s", "{:.0f}"));
     };
-    std::signal(SIGINT, request_stop);
-    std::signal(SIGTERM, request_stop);
+    handle_stop_signals();
     Trainer trainer(cfg, opts);
     spdlog::info("{} {} in {} ({} envs, {} threads, {} samples per iteration, input {}, actions {})",
                  args->resume ? "resuming at iteration" : "training from iteration", trainer.iteration(), opts.run_dir.string(),

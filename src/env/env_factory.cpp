@@ -35,28 +35,30 @@ EnvFactory reacher(ConfigSection& s) {
   return [c] { return std::make_unique<ReacherArmEnv>(c); };
 }
 
-// A data path: as given when it exists, else under the shared data directory.
-std::filesystem::path data_path(const std::string& given, const char* key) {
-  const std::filesystem::path p(given);
+// A data file the config names: beside the config when it is there (a run or model directory
+// holds its own clips), else as given (absolute, or relative to the working directory), else under
+// the shared data directory.
+std::filesystem::path data_path(const std::string& given, const char* key, const YamlReader& reader) {
+  const std::filesystem::path p(given), config_dir = std::filesystem::path(reader.source()).parent_path();
+  if (p.is_relative() && !config_dir.empty() && std::filesystem::exists(config_dir / p)) return config_dir / p;
   if (std::filesystem::exists(p)) return p;
   const std::filesystem::path shared = shared_data_dir();
   if (!shared.empty() && p.is_relative() && std::filesystem::exists(shared / p)) return shared / p;
-  throw Error(std::string("'env.") + key + "': " + given + " not found (also looked under " +
+  throw Error(reader.source() + ": 'env." + key + "': " + given + " not found (looked beside the config, in the working directory and under " +
               (shared.empty() ? std::string("the shared data directory, which is absent: set MIMIC_DATA") : shared.string()) + ")");
 }
 
 // A DeepMimic character (with its PD file when one lies beside it) and a clip for it.
-std::shared_ptr<const CharacterModel> load_character(const std::string& character) {
-  const std::filesystem::path ch_path = data_path(character, "character");
+std::shared_ptr<const CharacterModel> load_character(const std::filesystem::path& ch_path) {
   const std::filesystem::path ctrl = ch_path.parent_path() / (ch_path.stem().string() + "_ctrl.txt");
   return std::make_shared<const CharacterModel>(
       CharacterModel::from_deepmimic(ch_path, std::filesystem::exists(ctrl) ? ctrl : std::filesystem::path{}));
 }
 
-std::shared_ptr<const Clip> load_clip(const std::string& clip_file, const std::string& character) {
+std::shared_ptr<const Clip> load_clip(const std::filesystem::path& clip_path, const std::filesystem::path& ch_path) {
   LoadOptions load;
-  load.character = data_path(character, "character");
-  return std::make_shared<const Clip>(load_motion(data_path(clip_file, "clip"), load));
+  load.character = ch_path;
+  return std::make_shared<const Clip>(load_motion(clip_path, load));
 }
 
 // Seed 004's projectile test (sim/perturbation.hpp): cubes launched at the torso.
@@ -116,9 +118,10 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
   c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);
   c.goal_weight = s.number("goal_weight", c.goal_weight, 0, 1e6);
   c.projectiles = read_projectiles(s, reader, "env.projectiles");
-  auto ch = load_character(character);
+  const std::filesystem::path ch_path = data_path(character, "character", reader);
+  auto ch = load_character(ch_path);
   std::vector<std::shared_ptr<const Clip>> clips;
-  for (const std::string& f : clip_files) clips.push_back(load_clip(f, character));
+  for (const std::string& f : clip_files) clips.push_back(load_clip(data_path(f, "clip", reader), ch_path));
   return [ch, clips, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clips, c)); };
 }
 
@@ -148,8 +151,9 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.scales = {k.number("pose", c.scales.pose, 0, 1e6), k.number("velocity", c.scales.velocity, 0, 1e6),
               k.number("end_effector", c.scales.end_effector, 0, 1e6), k.number("com", c.scales.com, 0, 1e6)};
   k.finish();
-  auto ch = load_character(character);
-  auto clip = load_clip(clip_file, character);
+  const std::filesystem::path ch_path = data_path(character, "character", reader);
+  auto ch = load_character(ch_path);
+  auto clip = load_clip(data_path(clip_file, "clip", reader), ch_path);
   return [ch, clip, c] { return std::unique_ptr<Env>(make_tracking_env(*ch, clip, c)); };
 }
 

@@ -155,13 +155,13 @@ void AdversarialRewardSource::load_widened(torch::serialize::InputArchive& a, in
 
 namespace {
 
-// The expert file as given (relative to the working directory), else beside the config.
+// The expert file beside the config when it is there (a run or model directory holds its own
+// demonstrations), else as given (absolute, or relative to the working directory).
 std::filesystem::path find_expert(const std::string& given, const std::string& config_source) {
-  const std::filesystem::path p(given);
+  const std::filesystem::path p(given), beside = std::filesystem::path(config_source).parent_path() / p;
+  if (p.is_relative() && std::filesystem::exists(beside)) return beside;
   if (std::filesystem::exists(p)) return p;
-  const std::filesystem::path beside = std::filesystem::path(config_source).parent_path() / p;
-  if (!p.is_absolute() && std::filesystem::exists(beside)) return beside;
-  throw Error(config_source + ": expert demonstrations '" + given + "' not found (looked in the working directory and beside the config)");
+  throw Error(config_source + ": expert demonstrations '" + given + "' not found (looked beside the config and in the working directory)");
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "motion/retarget.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -7,6 +8,7 @@
 #include "core/file_io.hpp"
 #include "core/text_scanner.hpp"
 #include "core/yaml_reader.hpp"
+#include "motion/effector_ik.hpp"
 #include "motion/kinematics.hpp"
 
 namespace mimic {
@@ -28,8 +30,8 @@ RetargetMap parse_map(std::string_view text, const std::string& source) {
   for (const auto& kv : root) {
     if (!kv.first.IsScalar()) fail(kv.first, "a key must be a name");
     const std::string key = kv.first.Scalar();
-    if (key != "joints" && key != "scale" && key != "sites" && key != "end_effectors" && key != "ground_fix")
-      fail(kv.first, "unknown key '" + key + "' (joints, scale, sites, end_effectors, ground_fix)");
+    if (key != "joints" && key != "scale" && key != "sites" && key != "end_effectors" && key != "ground_fix" && key != "ik" && key != "contacts")
+      fail(kv.first, "unknown key '" + key + "' (joints, scale, sites, end_effectors, ik, contacts, ground_fix)");
   }
   const YAML::Node joints = root["joints"];
   if (!has(joints) || !joints.IsMap() || joints.size() == 0) fail(has(joints) ? joints : root, "'joints' must map target joint names to source joint names");
@@ -59,13 +61,21 @@ RetargetMap parse_map(std::string_view text, const std::string& source) {
       map.sites.push_back(site);
     }
   }
-  if (const YAML::Node e = root["end_effectors"]; e.IsDefined()) {
-    if (!e.IsSequence()) fail(e, "'end_effectors' must be a list of names");
+  const auto names = [&](const char* key, std::vector<std::string>& out) {
+    const YAML::Node e = root[key];
+    if (!e.IsDefined()) return;
+    if (!e.IsSequence()) fail(e, std::string("'") + key + "' must be a list of names");
     for (const YAML::Node& n : e) {
-      if (!n.IsScalar()) fail(n, "'end_effectors' must be a list of names");
-      map.end_effectors.push_back(n.Scalar());
+      if (!n.IsScalar()) fail(n, std::string("'") + key + "' must be a list of names");
+      out.push_back(n.Scalar());
     }
-  }
+  };
+  names("end_effectors", map.end_effectors);
+  names("ik", map.ik);
+  names("contacts", map.contacts);
+  for (std::size_t i = 0; i < map.contacts.size(); ++i)
+    if (std::find(map.ik.begin(), map.ik.end(), map.contacts[i]) == map.ik.end())
+      fail(root["contacts"][i], "contact '" + map.contacts[i] + "' is not one of the 'ik' joints (a contact is held by inverse kinematics)");
   if (const YAML::Node g = root["ground_fix"]; g.IsDefined()) {
     if (!g.IsScalar() || (g.Scalar() != "true" && g.Scalar() != "false")) fail(g, "'ground_fix' must be true or false");
     map.ground_fix = g.Scalar() == "true";
@@ -186,6 +196,50 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
     out.frames.push_back(std::move(tp));
   }
 
+  // The source's joints in the world, scaled (where the target's should be, before the shift).
+  std::vector<std::vector<Vec3>> scaled(src.frames.size());
+  for (std::size_t f = 0; f < src.frames.size(); ++f) {
+    forward_kinematics(src.skeleton, src.frames[f], sfk);
+    for (const Vec3& p : sfk.joint_pos) scaled[f].push_back(scale * p);
+  }
+  const auto mapped = [&](const std::string& name, const char* what) {
+    const int tj = target.find(name);
+    if (tj < 0) throw Error(map.source + ": " + what + " '" + name + "' is not a target joint");
+    const int sj = source_of[static_cast<std::size_t>(tj)];
+    if (sj < 0) throw Error(map.source + ": " + what + " '" + name + "' is not mapped to a source joint");
+    return std::pair<int, int>{tj, sj};
+  };
+  const auto source_track = [&](int sj) {
+    std::vector<Vec3> track;
+    for (const auto& frame : scaled) track.push_back(frame[static_cast<std::size_t>(sj)]);
+    return track;
+  };
+  const auto target_track = [&](const std::vector<Pose>& frames, int tj) {
+    std::vector<Vec3> track;
+    LinkFrames tfk;
+    for (const Pose& p : frames) {
+      forward_kinematics(target, p, tfk);
+      track.push_back(tfk.joint_pos[static_cast<std::size_t>(tj)]);
+    }
+    return track;
+  };
+
+  // Inverse kinematics: the ik joints to the scaled source's positions, the contacts held still
+  // on the ground through the source's stance (motion/effector_ik.hpp).
+  const std::vector<Pose> transferred = out.frames;
+  std::vector<EffectorGoal> goals;
+  std::vector<std::pair<int, std::vector<bool>>> stances;  // contact joint, its stance frames
+  for (const std::string& name : map.ik) {
+    const auto [tj, sj] = mapped(name, "ik joint");
+    EffectorGoal goal{tj, source_track(sj)};
+    if (std::find(map.contacts.begin(), map.contacts.end(), name) != map.contacts.end()) {
+      stances.emplace_back(tj, stance_frames(goal.position, src.fps));
+      hold_stance(goal.position, stances.back().second);
+    }
+    goals.push_back(std::move(goal));
+  }
+  if (!goals.empty()) reach_effectors(target, out.frames, goals);
+
   double shift = 0.0;
   if (map.ground_fix) {
     shift = -clip_min_height(out);
@@ -196,29 +250,37 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
     report->scale = scale;
     report->ground_shift = shift;
     report->effectors.clear();
-    std::vector<std::pair<int, int>> pairs;  // target joint, source joint
+    const Vec3 up(0, 0, shift);
     for (const std::string& name : map.end_effectors) {
-      const int tj = target.find(name);
-      if (tj < 0) throw Error(map.source + ": end effector '" + name + "' is not a target joint");
-      const int sj = source_of[static_cast<std::size_t>(tj)];
-      if (sj < 0) throw Error(map.source + ": end effector '" + name + "' is not mapped to a source joint");
-      pairs.emplace_back(tj, sj);
-      report->effectors.push_back(EffectorError{name, 0.0, 0.0});
-    }
-    LinkFrames tfk;
-    for (std::size_t f = 0; f < src.frames.size(); ++f) {
-      forward_kinematics(src.skeleton, src.frames[f], sfk);
-      forward_kinematics(target, out.frames[f], tfk);
-      const Vec3 src_root = sfk.joint_pos[static_cast<std::size_t>(source_of[0])];
-      for (std::size_t e = 0; e < pairs.size(); ++e) {
-        const Vec3 want = scale * (sfk.joint_pos[static_cast<std::size_t>(pairs[e].second)] - src_root);
-        const Vec3 got = tfk.joint_pos[static_cast<std::size_t>(pairs[e].first)] - tfk.joint_pos[0];
-        const double err = (want - got).norm();
-        report->effectors[e].mean += err;
-        report->effectors[e].max = std::max(report->effectors[e].max, err);
+      const auto [tj, sj] = mapped(name, "end effector");
+      const std::vector<Vec3> want = source_track(sj), got = target_track(out.frames, tj), before = target_track(transferred, tj);
+      const std::vector<Vec3> root = target_track(out.frames, 0);
+      EffectorError e{name, 0.0, 0.0, 0.0, 0.0};
+      for (std::size_t f = 0; f < want.size(); ++f) {
+        const double err = ((want[f] - scaled[f][static_cast<std::size_t>(source_of[0])]) - (got[f] - root[f])).norm();
+        e.mean += err, e.max = std::max(e.max, err);
+        e.world_mean += (got[f] - up - want[f]).norm();
+        e.world_mean_before_ik += (before[f] - want[f]).norm();
       }
+      const auto n = static_cast<double>(std::max<std::size_t>(1, want.size()));
+      e.mean /= n, e.world_mean /= n, e.world_mean_before_ik /= n;
+      report->effectors.push_back(e);
     }
-    for (EffectorError& e : report->effectors) e.mean /= static_cast<double>(std::max<std::size_t>(1, src.frames.size()));
+    report->contacts.clear();
+    for (const auto& [tj, stance] : stances)
+      report->contacts.push_back(ContactReport{target.joints[static_cast<std::size_t>(tj)].name,
+                                               static_cast<int>(std::count(stance.begin(), stance.end(), true)),
+                                               stance_sliding(target_track(out.frames, tj), stance, src.fps),
+                                               stance_sliding(target_track(transferred, tj), stance, src.fps)});
+    report->frames_below_floor = 0;
+    LinkFrames tfk;
+    for (const Pose& p : out.frames) {
+      forward_kinematics(target, p, tfk);
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const auto* points : {&tfk.joint_pos, &tfk.site_pos})
+        for (const Vec3& x : *points) lowest = std::min(lowest, x.z());
+      report->frames_below_floor += lowest < -1e-9;
+    }
   }
   // A scale or a site far out of proportion gives positions no capture has (found by the fuzzer).
   try {

@@ -2,8 +2,10 @@
 // Retargeting a clip onto another skeleton by a joint-name map (a small YAML file, see
 // docs/retargeting.md). Each mapped target joint takes the source joint's rotation relative to
 // its rest pose, after aligning the two rest poses bone by bone (a T-pose source drives an
-// arms-down target correctly). Root translation is scaled; one vertical shift per clip puts the
-// lowest contact point on the ground.
+// arms-down target correctly). Root translation is scaled. Then, where the map lists them,
+// inverse kinematics puts end effectors where the scaled source has them and holds the contact
+// joints (feet) still on the ground while the source's are in stance (motion/effector_ik.hpp).
+// Last, one vertical shift per clip puts the lowest contact point on the ground.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -22,7 +24,9 @@ struct RetargetMap {
   std::vector<std::pair<std::string, std::string>> joints;  // target joint <- source joint
   double scale = 0.0;                     // target/source length ratio; 0 = from the rest poses
   std::vector<RetargetSite> sites;        // extra target sites (e.g. soles) kept in the output
-  std::vector<std::string> end_effectors; // target joints or sites whose error is reported
+  std::vector<std::string> end_effectors; // target joints whose error is reported
+  std::vector<std::string> ik;            // target joints put where the scaled source has them
+  std::vector<std::string> contacts;      // of those, the ones held still through the source's stance
   bool ground_fix = true;
   std::string source;                     // where the map came from, for errors
 };
@@ -33,12 +37,23 @@ RetargetMap load_retarget_map(const std::filesystem::path& path);
 struct EffectorError {
   std::string name;
   double mean = 0.0, max = 0.0;  // metres, root-relative, target vs scaled source
+  double world_mean = 0.0;       // metres, in the world (before the ground shift), target vs scaled source
+  double world_mean_before_ik = 0.0;  // the same from the rotation transfer alone
+};
+
+// A contact joint through the source's stance frames: how far it slides (mean horizontal speed).
+struct ContactReport {
+  std::string name;
+  int stance_frames = 0;
+  double sliding = 0.0, sliding_before_ik = 0.0;  // m/s
 };
 
 struct RetargetReport {
   double scale = 1.0;
   double ground_shift = 0.0;  // metres added to the root height
   std::vector<EffectorError> effectors;
+  std::vector<ContactReport> contacts;
+  int frames_below_floor = 0;  // frames whose lowest joint or site is under the floor (ground_fix: none)
 };
 
 // Throws Error naming the map file when a mapped joint is missing on either side.

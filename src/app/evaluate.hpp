@@ -1,0 +1,31 @@
+#pragma once
+// `mimic eval`'s measurement as a function: `mimic imitate` evaluates the model it made with it.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mimic::app {
+
+struct EvalArgs {
+  std::filesystem::path run, json, clip, character;
+  int episodes = 20, trials = 20;
+  int context = -1;  // a behaviour context held for the imitation trials (-1: none given)
+  bool latency = false;
+  std::vector<int> switches;  // behaviour contexts whose every ordered pair is a switch to measure
+  double switch_seconds = 5.0;
+  std::vector<double> masses;  // robustness: projectile masses (kg)
+  int robustness_trials = 20;
+  double robustness_seconds = 10.0;
+  bool stochastic = false;
+  std::uint64_t seed = 12345;
+  std::vector<std::string> settings;  // env.KEY=VALUE overrides of the run's config, in memory
+  std::vector<std::filesystem::path> transitions;  // other skills of the character: switch to and from each
+  int transition_trials = 20;
+};
+
+// Measures the run or model directory `args.run` as `mimic eval` does: a table on the terminal,
+// and the figures as JSON into args.json where given.
+void evaluate(const EvalArgs& args);
+
+}  // namespace mimic::app

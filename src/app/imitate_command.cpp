@@ -1,0 +1,330 @@
+// mimic imitate CLIP... -o RUN: a clip to an evaluated, filmed skill in one command. Puts the clips
+// on the character (retargeted with --map where its skeleton is another), records their
+// demonstrations into the run, trains with the method's recipe (configs/recipes/), exports the
+// model with its clips and demonstrations inside, evaluates it, films it with the clip as a ghost
+// and writes report.md with the learning curve. Several clips give one policy that starts from
+// all of them (seed 004's integrated multi-clip policy).
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "app/commands.hpp"
+#include "app/eval_file.hpp"
+#include "app/evaluate.hpp"
+#include "app/policy_video.hpp"
+#include "app/recipes.hpp"
+#include "app/stop_requests.hpp"
+#include "core/config_override.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/yaml_reader.hpp"
+#include "env/context_env.hpp"
+#include "env/env_factory.hpp"
+#include "learn/clip_demonstrations.hpp"
+#include "learn/run_log.hpp"
+#include "learn/trainer.hpp"
+#include "motion/retarget.hpp"
+#include "render/line_chart.hpp"
+
+namespace mimic::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kDefaultCharacter = "deepmimic/characters/humanoid3d.txt";  // the recipes' (under the shared data)
+constexpr int kDemonstrationPasses = 8;  // passes over each clip, offset by a fraction of a control step
+
+struct ImitateArgs {
+  std::vector<fs::path> clips;
+  fs::path out, map, from;
+  std::string method = "iccgan";
+  LoadOptions load;  // load.character: the character (default: the recipe's humanoid)
+  long long samples = 0;  // 0: the recipe's budget (a resumed run: its own)
+  std::uint64_t seed = 1;
+  int threads = -1, trials = 10;
+  double video_seconds = 10.0;
+  bool resume = false;
+};
+
+// "1h02m", "3m05s", "12s".
+std::string duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "-";
+  const long s = std::lround(seconds);
+  if (s >= 3600) return fmt::format("{}h{:02}m", s / 3600, (s % 3600) / 60);
+  if (s >= 60) return fmt::format("{}m{:02}s", s / 60, s % 60);
+  return fmt::format("{}s", s);
+}
+
+// The command line that makes this run, for its report.
+std::string command_line(const ImitateArgs& a) {
+  std::string line = "mimic imitate";
+  for (const fs::path& c : a.clips) line += " " + c.string();
+  line += " -o " + a.out.string() + " --method " + a.method;
+  if (!a.load.character.empty()) line += " --character " + a.load.character.string();
+  if (!a.map.empty()) line += " --map " + a.map.string();
+  if (!a.from.empty()) line += " --from " + a.from.string();
+  if (a.samples > 0) line += fmt::format(" --samples {}", a.samples);
+  if (a.seed != 1) line += fmt::format(" --seed {}", a.seed);
+  return line;
+}
+
+// The clips on the character, checked to fit it, retargeted first where a map is given. Nothing
+// is written here: bad input fails before the run directory exists.
+std::vector<Clip> clips_on_character(const ImitateArgs& a, const fs::path& character) {
+  LoadOptions load = a.load;
+  load.character = character;
+  const std::optional<RetargetMap> map = a.map.empty() ? std::nullopt : std::optional<RetargetMap>(load_retarget_map(a.map));
+  const fs::path ctrl = character.parent_path() / (character.stem().string() + "_ctrl.txt");
+  const Skeleton target = map ? CharacterModel::from_deepmimic(character, fs::exists(ctrl) ? ctrl : fs::path{}).skeleton : Skeleton{};
+  std::vector<Clip> clips;
+  for (const fs::path& path : a.clips) {
+    Clip clip = load_motion(path, map ? a.load : load);
+    if (map) {
+      RetargetReport report;
+      const std::string name = clip.name;
+      clip = retarget(clip, target, *map, &report);
+      clip.name = name;
+      spdlog::info("retargeted {} by {}:\n{}", path.string(), a.map.string(), retarget_summary(report));
+    }
+    try {
+      (void)character_for(clip, path, load);
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) + (map ? "" : "; give --map MAP.yaml to retarget it (docs/retargeting.md)"));
+    }
+    for (const Clip& other : clips)
+      if (other.name == clip.name) clip.name += fmt::format("_{}", clips.size() + 1);
+    clips.push_back(std::move(clip));
+  }
+  return clips;
+}
+
+// A new run: clips (and a given character) copied in, the recipe's config with them, the clips'
+// demonstrations.
+void start_run(const ImitateArgs& a, const Recipe& recipe) {
+  if (a.clips.empty()) throw Error("imitate: give one clip or more (or --resume -o RUN to go on with a run)");
+  if (fs::exists(a.out) && !(fs::is_directory(a.out) && fs::is_empty(a.out)))
+    throw Error(a.out.string() + " already exists: `mimic imitate --resume -o " + a.out.string() + "` goes on with it; or choose another -o");
+  if (a.method == "tracking" && a.clips.size() != 1)
+    throw Error("--method tracking follows one clip; give one (iccgan and gail learn one policy from several)");
+  fs::path character = a.load.character;
+  if (character.empty()) {
+    const fs::path shared = shared_data_dir();
+    if (shared.empty() || !fs::exists(shared / kDefaultCharacter))
+      throw Error(std::string("the recipes' character is DeepMimic's humanoid, ") + kDefaultCharacter +
+                  " under the shared data directory, which is absent (set MIMIC_DATA); or give --character FILE");
+    character = shared / kDefaultCharacter;
+  } else if (!fs::is_regular_file(character)) {
+    throw Error("--character " + character.string() + ": not found");
+  }
+  const std::vector<Clip> clips = clips_on_character(a, character);
+  const TrainConfig recipe_cfg = parse_train_config(recipe.text, "configs/recipes/" + a.method + ".yaml");
+  const long long per_iteration = recipe_cfg.collect.samples;
+  const long long samples = a.samples > 0 ? a.samples : per_iteration * recipe_cfg.iterations;
+  std::vector<std::string> settings{fmt::format("iterations={}", std::max(1LL, (samples + per_iteration - 1) / per_iteration)),
+                                    fmt::format("seed={}", a.seed)};
+  if (a.threads >= 0) settings.push_back(fmt::format("collect.threads={}", resolve_threads(a.threads)));
+  std::string clip_list;
+  for (const Clip& c : clips) clip_list += (clip_list.empty() ? "" : ", ") + json_string("clips/" + c.name + ".mclip");
+  // One clip is the environment's reference (what eval and the video's ghost compare with).
+  settings.push_back(clips.size() == 1 ? "env.clip=" + clip_list : "env.clip=[" + clip_list + "]");
+  if (!a.load.character.empty()) settings.push_back("env.character=" + json_string("character/" + character.filename().string()));
+
+  // Everything is known to fit: write the run.
+  fs::create_directories(a.out / "clips");
+  for (const Clip& c : clips) save_clip(c, a.out / "clips" / (c.name + ".mclip"));
+  if (!a.load.character.empty()) {
+    fs::create_directories(a.out / "character");
+    fs::copy_file(character, a.out / "character" / character.filename());
+    const fs::path ctrl = character.parent_path() / (character.stem().string() + "_ctrl.txt");
+    if (fs::exists(ctrl)) fs::copy_file(ctrl, a.out / "character" / ctrl.filename());
+  }
+  const std::string text = "# " + command_line(a) + "\n# the recipe configs/recipes/" + a.method + ".yaml with the clips filled in\n" +
+                           override_config(recipe.text, "configs/recipes/" + a.method + ".yaml", settings);
+  const fs::path config = a.out / "config.yaml";
+  write_file_atomic(config, text);
+  spdlog::info("{}: {} clip{} on {}, recipe {}", a.out.string(), clips.size(), clips.size() == 1 ? "" : "s", character.string(), a.method);
+  if (a.method == "tracking") return;
+  const TrainConfig cfg = parse_train_config(text, config.string());
+  const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
+  auto* character_env = dynamic_cast<CharacterEnv*>(env.get());
+  if (!character_env) throw Error(config.string() + ": the recipe's environment has no character to pose from the clips");
+  const Demonstrations d = clip_demonstrations(*character_env, clips, kDemonstrationPasses);
+  write_demonstrations(a.out / "demos.csv", d);
+  spdlog::info("recorded {}: {} transitions of the clips ({} passes each), the discriminator's examples", (a.out / "demos.csv").string(),
+               d.size(), kDemonstrationPasses);
+}
+
+// Trains to the run's iteration count; false when a stop request ended it first.
+bool train(const ImitateArgs& a) {
+  const fs::path config = a.out / "config.yaml";
+  TrainConfig cfg = parse_train_config(read_text_file(config), config.string());
+  if (a.resume && a.samples > 0)
+    cfg.iterations = static_cast<int>(std::max(1LL, (a.samples + cfg.collect.samples - 1) / cfg.collect.samples));
+  if (a.resume && a.threads >= 0) cfg.collect.threads = resolve_threads(a.threads);
+  TrainOptions opts;
+  opts.run_dir = a.out;
+  opts.resume = a.resume;
+  opts.init_from = a.from;
+  opts.stop_requests = stop_requests;
+  const auto start = std::chrono::steady_clock::now();
+  double first_samples = -1;
+  const long long total = static_cast<long long>(cfg.iterations) * cfg.collect.samples;
+  opts.on_iteration = [&, total](const IterationMetrics& m) {
+    const double samples = m.get("samples"), elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (first_samples < 0) first_samples = samples - cfg.collect.samples;
+    const double rate = (samples - first_samples) / std::max(elapsed, 1e-9);
+    spdlog::info("iter {:>5}/{}  samples {:>10.0f} ({:4.1f} %)  reward {:6.3f}  return {:8.2f}  elapsed {}  ETA {}", m.iteration,
+                 cfg.iterations, samples, 100.0 * samples / static_cast<double>(total), m.get("reward"), m.get("return"),
+                 duration(m.get("wall_s")), duration((static_cast<double>(total) - samples) / rate));
+  };
+  handle_stop_signals();
+  Trainer trainer(cfg, opts);
+  spdlog::info("{} {}: {} iterations of {} samples ({} envs, {} threads)", a.resume ? "resuming" : "training", a.out.string(),
+               cfg.iterations, cfg.collect.samples, cfg.collect.envs, cfg.collect.threads);
+  const RunEnd end = trainer.run();
+  if (end.stopped)
+    spdlog::info("stopped at iteration {} ({} samples), saved; `mimic imitate --resume -o {}` goes on from it", end.iteration,
+                 trainer.samples(), a.out.string());
+  return !end.stopped;
+}
+
+// RUN/model: the acting-only export, with the clips, demonstrations and character it names, so
+// that it loads wherever it is copied. Replaces an earlier one only once it is written.
+fs::path export_model(const fs::path& run) {
+  const fs::path model = run / "model", fresh = run / "model.new";
+  fs::remove_all(fresh);
+  const std::unique_ptr<Trainer> trainer = Trainer::from_run(run, /*reward_sources=*/true);
+  fs::create_directories(fresh);
+  for (const char* own : {"clips", "character", "demos.csv", "config.yaml", "metrics.csv"})
+    if (fs::exists(run / own)) fs::copy(run / own, fresh / own, fs::copy_options::recursive);
+  trainer->export_model(fresh / "checkpoint.pt");
+  fs::remove_all(model);
+  fs::rename(fresh, model);
+  spdlog::info("exported {} (iteration {}, {} samples)", model.string(), trainer->iteration(), trainer->samples());
+  return model;
+}
+
+void write_curves(const fs::path& run) {
+  const MetricsTable t = read_metrics_csv(run / "metrics.csv");
+  LineChart chart;
+  chart.title = "Learning curve: imitation reward per step";
+  chart.x_label = "samples";
+  chart.y_label = "reward per step";
+  chart.series.push_back({run.filename().string(), t.column("samples"), t.column("reward")});
+  write_line_chart(run / "curves.png", chart);
+}
+
+// The run's clips, sorted by name.
+std::vector<fs::path> clips_of(const fs::path& dir) {
+  std::vector<fs::path> clips;
+  for (const auto& entry : fs::directory_iterator(dir / "clips")) clips.push_back(entry.path());
+  std::sort(clips.begin(), clips.end());
+  return clips;
+}
+
+// The evaluation file of each clip: eval.json for one, eval_<clip>.json for several.
+fs::path eval_file(const fs::path& run, const fs::path& clip, std::size_t clips) {
+  return clips == 1 ? run / "eval.json" : run / ("eval_" + clip.stem().string() + ".json");
+}
+
+void write_report(const ImitateArgs& a, const Recipe& recipe, bool video) {
+  const MetricsTable t = read_metrics_csv(a.out / "metrics.csv");
+  const TrainConfig cfg = parse_train_config(read_text_file(a.out / "config.yaml"), (a.out / "config.yaml").string());
+  const double samples = t.column("samples").back(), wall = t.column("wall_s").back();
+  const std::vector<fs::path> clips = clips_of(a.out);
+  std::string names;
+  for (const fs::path& c : clips) names += (names.empty() ? "" : ", ") + c.stem().string();
+  std::string text = fmt::format("# {}: {} imitation of {}\n\n", a.out.filename().string(), recipe.method, names);
+  text += fmt::format("Made by `{}`: the recipe configs/recipes/{}.yaml (the run's config.yaml is it with the clips filled in).\n\n",
+                      command_line(a), recipe.method);
+  text += "| | |\n|---|---|\n";
+  text += fmt::format("| samples | {:.0f} ({} iteration{} of {}) |\n", samples, t.rows.size(), t.rows.size() == 1 ? "" : "s",
+                      cfg.collect.samples);
+  text += fmt::format("| wall time | {} ({} thread{}) |\n", duration(wall), cfg.collect.threads, cfg.collect.threads == 1 ? "" : "s");
+  for (const fs::path& clip : clips) {
+    const EvalSummary e = read_eval_json(eval_file(a.out, clip, clips.size()));
+    const std::string of = clips.size() == 1 ? "" : " (" + clip.stem().string() + ")";
+    if (std::isfinite(e.error_mean))
+      text += fmt::format("| imitation error{} | {:.3f} ± {:.3f} m (mean over links of the world position error; {} trials from evenly "
+                          "spaced phases of the clip) |\n",
+                          of, e.error_mean, e.error_std, e.trials);
+    if (e.down >= 0) text += fmt::format("| down{} | {} of {} trials (a fall, or lying 10 frames) |\n", of, e.down, e.trials);
+    if (std::isfinite(e.progress)) text += fmt::format("| progress{} | {:.2f} of the clip's ground covered |\n", of, e.progress);
+    if (clip == clips.front()) text += fmt::format("| episode length | {:.0f} steps (mean actions) |\n", e.episode_length);
+  }
+  text += "\n![learning curve](curves.png)\n\n";
+  if (video) text += "Video: [video.mp4](video.mp4) (the translucent ghost is the clip).\n\n";
+  text += "The model is `model/` (its clips and demonstrations inside): `mimic eval " + (a.out / "model").string() +
+          "`, `mimic render " + (a.out / "model").string() + " -o skill.mp4 --ghost`, or load it from a program with the runtime " +
+          "(docs/runtime.md). The evaluation files hold the figures above.\n";
+  write_file_atomic(a.out / "report.md", text);
+}
+
+void imitate(const ImitateArgs& a) {
+  const Recipe& r = recipe(a.method);
+  if (a.resume && !a.from.empty()) throw Error("--from starts a new run; a resumed run goes on from its own weights");
+  if (a.resume) {
+    if (!a.clips.empty()) throw Error("--resume goes on with the run's own clips: give none");
+    if (!fs::exists(a.out / "config.yaml") || !fs::exists(a.out / "checkpoint.pt"))
+      throw Error(a.out.string() + ": no run to resume (config.yaml and checkpoint.pt); start one without --resume");
+  } else {
+    start_run(a, r);
+  }
+  if (!train(a)) return;
+  const fs::path model = export_model(a.out);
+  // Against each clip: eval.json for one, eval_<clip>.json for several.
+  const std::vector<fs::path> clips = clips_of(model);
+  for (const fs::path& clip : clips) {
+    EvalArgs e;
+    // The clip named: a humanoid_forward environment draws starts from its clips but tracks none.
+    e.run = model, e.episodes = a.trials, e.trials = a.trials, e.json = eval_file(a.out, clip, clips.size()), e.clip = clip;
+    evaluate(e);
+  }
+  bool video = false;
+  if (a.video_seconds > 0) {
+    PolicyVideoOptions o;
+    o.width = 480, o.height = 360, o.seconds = a.video_seconds, o.ghost = true;
+    try {
+      const PolicyVideoStats s = render_policy_video(model, a.out / "video.mp4", o);
+      spdlog::info("filmed {} ({} frames; the translucent ghost is the clip)", (a.out / "video.mp4").string(), s.frames);
+      video = true;
+    } catch (const Error& err) {
+      spdlog::warn("no video: {}", err.what());
+    }
+  }
+  write_curves(a.out);
+  write_report(a, r, video);
+  spdlog::info("wrote {}: the model, its evaluation, {}curves.png and report.md", a.out.string(), video ? "video.mp4, " : "");
+}
+
+}  // namespace
+
+void add_imitate_command(CLI::App& app) {
+  auto args = std::make_shared<ImitateArgs>();
+  CLI::App* cmd = app.add_subcommand("imitate", "a clip to a trained, evaluated and filmed skill in one command (docs/imitate.md)");
+  cmd->add_option("clips", args->clips, "motion clips (.mclip, .bvh, .amc, DeepMimic .txt); several train one policy from all")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--out", args->out, "run directory to write (the model, eval.json, video.mp4, report.md end up in it)")->required();
+  cmd->add_option("--method", args->method, "iccgan (seed 004's discriminator ensemble), gail (seed 000) or tracking (seed 003)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"iccgan", "gail", "tracking"}));
+  cmd->add_option("--map", args->map, "retarget map (YAML, docs/retargeting.md) for clips whose skeleton is not the character's")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--from", args->from, "start from a trained skill's weights (a model or run directory), e.g. a shipped walk")
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "collection threads (0: every core; default: the recipe's)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--trials", args->trials, "evaluation episodes and imitation trials")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--video-seconds", args->video_seconds, "length of the video (0: none)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)");
+  add_load_options(*cmd, args->load);
+  cmd->callback([args] { imitate(*args); });
+}
+
+}  // namespace mimic::app
