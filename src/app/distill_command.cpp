@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/stop_requests.hpp"
 #include "app/run_skill.hpp"
+#include "core/config_file.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
@@ -103,7 +104,7 @@ void add_distill_command(CLI::App& app) {
     if (!args->resume) settings.push_back("rewards=[{source: env}]");
     const std::filesystem::path config = args->resume ? args->out / "config.yaml" : args->config;
     const std::string source = config.string();
-    const std::string text = override_config(read_text_file(config), source, settings);
+    const std::string text = override_config(read_config_file(config), source, settings);
     TrainConfig cfg = parse_train_config(text, source);
     if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     if (cfg.policy.net.history != 1) throw Error(source + ": distillation needs a student that sees one frame (policy.history: 1)");

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "app/commands.hpp"
+#include "core/config_file.hpp"
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "core/file_io.hpp"
@@ -111,7 +112,7 @@ void add_imitation_commands(CLI::App& app) {
       d = d.first_episodes(clone->episodes);
     }
     // The clone learns from no reward: its run must load without the config's expert files.
-    const std::string text = override_config(read_text_file(clone->config), clone->config.string(), {"rewards=[{source: env}]"});
+    const std::string text = override_config(read_config_file(clone->config), clone->config.string(), {"rewards=[{source: env}]"});
     Trainer trainer(parse_train_config(text, clone->config.string()));
     const double loss = trainer.clone_behaviour(d, clone->epochs, clone->lr, clone->batch, trainer.config().seed);
     std::filesystem::create_directories(clone->out);

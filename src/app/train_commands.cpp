@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "app/stop_requests.hpp"
+#include "core/config_file.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "learn/runtime_format.hpp"
@@ -63,7 +64,7 @@ void add_train_commands(CLI::App& app) {
       args->config = args->out / "config.yaml";
     }
     const std::string source = args->config.string();
-    TrainConfig cfg = parse_train_config(override_config(read_text_file(args->config), source, args->settings), source);
+    TrainConfig cfg = parse_train_config(override_config(read_config_file(args->config), source, args->settings), source);
     if (args->iterations > 0) cfg.iterations = args->iterations;  // the Trainer records it in RUN/config.yaml
     if (args->threads >= 0) cfg.collect.threads = resolve_threads(args->threads);
     TrainOptions opts;
@@ -211,7 +212,7 @@ void add_train_commands(CLI::App& app) {
   bench_train->callback([args] {
     if (!args->bench_config.empty()) {
       args->bench.config_source = args->bench_config.string();
-      args->bench.config_text = read_text_file(args->bench_config);
+      args->bench.config_text = read_config_file(args->bench_config);
     }
     const std::vector<TrainBenchResult> results = run_train_benchmark(args->bench, [](const std::string& line) { spdlog::info("{}", line); });
     fmt::print("{}", format_train_benchmark(args->bench, results));

@@ -4,6 +4,7 @@
 #include <optional>
 #include <thread>
 
+#include "core/config_file.hpp"
 #include "core/config_section.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -234,7 +235,7 @@ std::string config_difference(const std::string& first, const std::string& first
 }
 
 TrainConfig load_train_config(const std::filesystem::path& path) {
-  return parse_train_config(read_text_file(path), path.string());
+  return parse_train_config(read_config_file(path), path.string());
 }
 
 }  // namespace mimic
