@@ -435,8 +435,10 @@ run_fails_named("twice.yaml:2: key 'seed' is given twice (first on line 1)" trai
 if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   # mimic imitate: a clip that is not in ../shared (the built-in jumping jack, mirrored; its
   # skeleton is the humanoid's) to a model, eval.json, video, curves and report, at one iteration.
-  run_ok(imitate ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run --samples 1 --trials 2 --video-seconds 1 --threads 1)
-  expect_in("${LAST_OUT}" "iter     1/1  samples       4096 (100.0 %)")
+  # (--set makes the iteration small: this tests the pipeline, not the learning.)
+  run_ok(imitate ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run --samples 1 --trials 1 --video-seconds 0.5 --threads 1
+         --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2)
+  expect_in("${LAST_OUT}" "iter     1/1  samples        256 (100.0 %)")
   foreach(f model/networks.mimic model/checkpoint.pt model/config.yaml model/demos.csv model/clips/jumping_jack_mirrored.mclip
             eval.json video.mp4 curves.png report.md)
     if(NOT EXISTS ${OUT}/imitate_run/${f})
@@ -444,14 +446,27 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
     endif()
   endforeach()
   file(READ ${OUT}/imitate_run/report.md imitate_report)
-  expect_in("${imitate_report}" "| samples | 4096 (1 iteration of 4096) |")
+  expect_in("${imitate_report}" "| samples | 256 (1 iteration of 256) |")
+  expect_in("${imitate_report}" "--set collect.samples=256")
   expect_in("${imitate_report}" "| imitation error | ")
   # The model holds what it names: moved elsewhere, it still loads and acts.
   file(RENAME ${OUT}/imitate_run/model ${OUT}/imitated_model)
   run_ok(eval ${OUT}/imitated_model --episodes 1 --trials 1 --clip ${OUT}/imitated_model/clips/jumping_jack_mirrored.mclip)
   expect_in("${LAST_OUT}" "phases of 'jumping_jack_mirrored'")
+  # A CMU clip retargeted by a map, tracked (seed 003's recipe).
+  run_ok(imitate ${DATA}/cmu-bvh/131_01.bvh --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking
+         -o ${OUT}/imitate_cmu --samples 1 --trials 1 --video-seconds 0 --threads 1 --set collect.samples=128 --set collect.envs=2
+         --set env.max_seconds=1)
+  expect_in("${LAST_OUT}" "retargeted ${DATA}/cmu-bvh/131_01.bvh by ${SRC}/data/retarget/cmu_to_humanoid3d.yaml:")
+  expect_in("${LAST_OUT}" "contact left_ankle ")
+  file(READ ${OUT}/imitate_cmu/config.yaml imitate_cmu_config)
+  expect_in("${imitate_cmu_config}" "clip: clips/131_01.mclip")
+  if(NOT EXISTS ${OUT}/imitate_cmu/eval.json OR EXISTS ${OUT}/imitate_cmu/demos.csv)
+    message(FATAL_ERROR "mimic imitate --method tracking: eval.json expected, and no demonstrations (tracking needs none)")
+  endif()
   # Bad input: nothing written is lost, nothing half-made is left.
   run_fails("already exists: `mimic imitate --resume -o" imitate ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run)
+  run_fails("--method tracking follows one clip" imitate ${OUT}/jj_mirror.mclip ${OUT}/demo/jumping_jack.mclip --method tracking -o ${OUT}/imitate_two)
   if(NOT EXISTS ${OUT}/imitate_run/report.md)
     message(FATAL_ERROR "a refused mimic imitate removed the run it refused to overwrite")
   endif()
@@ -459,7 +474,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_fails("; give --map MAP.yaml to retarget it" imitate ${DATA}/cmu-bvh/131_01.bvh -o ${OUT}/imitate_unfit)
   run_fails("broken.bvh" imitate ${OUT}/broken.bvh -o ${OUT}/imitate_broken)
   run_fails("no run to resume" imitate --resume -o ${OUT}/imitate_nothing)
-  foreach(d imitate_unfit imitate_broken imitate_nothing)
+  foreach(d imitate_unfit imitate_broken imitate_nothing imitate_two)
     if(EXISTS ${OUT}/${d})
       message(FATAL_ERROR "a refused mimic imitate left ${OUT}/${d} behind")
     endif()

@@ -43,6 +43,7 @@ struct ImitateArgs {
   fs::path out, map, from;
   std::string method = "iccgan";
   LoadOptions load;  // load.character: the character (default: the recipe's humanoid)
+  std::vector<std::string> settings;  // --set KEY.PATH=VALUE over the recipe, recorded in the run's config
   long long samples = 0;  // 0: the recipe's budget (a resumed run: its own)
   std::uint64_t seed = 1;
   int threads = -1, trials = 10;
@@ -69,6 +70,7 @@ std::string command_line(const ImitateArgs& a) {
   if (!a.from.empty()) line += " --from " + a.from.string();
   if (a.samples > 0) line += fmt::format(" --samples {}", a.samples);
   if (a.seed != 1) line += fmt::format(" --seed {}", a.seed);
+  for (const std::string& setting : a.settings) line += " --set " + setting;
   return line;
 }
 
@@ -121,7 +123,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     throw Error("--character " + character.string() + ": not found");
   }
   const std::vector<Clip> clips = clips_on_character(a, character);
-  const TrainConfig recipe_cfg = parse_train_config(recipe.text, "configs/recipes/" + a.method + ".yaml");
+  const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
+  const TrainConfig recipe_cfg = parse_train_config(override_config(recipe.text, recipe_source, a.settings), recipe_source);
   const long long per_iteration = recipe_cfg.collect.samples;
   const long long samples = a.samples > 0 ? a.samples : per_iteration * recipe_cfg.iterations;
   std::vector<std::string> settings{fmt::format("iterations={}", std::max(1LL, (samples + per_iteration - 1) / per_iteration)),
@@ -132,30 +135,37 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   // One clip is the environment's reference (what eval and the video's ghost compare with).
   settings.push_back(clips.size() == 1 ? "env.clip=" + clip_list : "env.clip=[" + clip_list + "]");
   if (!a.load.character.empty()) settings.push_back("env.character=" + json_string("character/" + character.filename().string()));
+  settings.insert(settings.end(), a.settings.begin(), a.settings.end());  // the user's last: they win
 
-  // Everything is known to fit: write the run.
-  fs::create_directories(a.out / "clips");
-  for (const Clip& c : clips) save_clip(c, a.out / "clips" / (c.name + ".mclip"));
-  if (!a.load.character.empty()) {
-    fs::create_directories(a.out / "character");
-    fs::copy_file(character, a.out / "character" / character.filename());
-    const fs::path ctrl = character.parent_path() / (character.stem().string() + "_ctrl.txt");
-    if (fs::exists(ctrl)) fs::copy_file(ctrl, a.out / "character" / ctrl.filename());
+  // Everything is known to fit: write the run (and take it away again if that fails: it was new).
+  try {
+    fs::create_directories(a.out / "clips");
+    for (const Clip& c : clips) save_clip(c, a.out / "clips" / (c.name + ".mclip"));
+    if (!a.load.character.empty()) {
+      fs::create_directories(a.out / "character");
+      fs::copy_file(character, a.out / "character" / character.filename());
+      const fs::path ctrl = character.parent_path() / (character.stem().string() + "_ctrl.txt");
+      if (fs::exists(ctrl)) fs::copy_file(ctrl, a.out / "character" / ctrl.filename());
+    }
+    const std::string text = "# " + command_line(a) + "\n# the recipe configs/recipes/" + a.method + ".yaml with the clips filled in\n" +
+                             override_config(recipe.text, recipe_source, settings);
+    const fs::path config = a.out / "config.yaml";
+    write_file_atomic(config, text);
+    spdlog::info("{}: {} clip{} on {}, recipe {}", a.out.string(), clips.size(), clips.size() == 1 ? "" : "s", character.string(), a.method);
+    if (a.method == "tracking") return;
+    const TrainConfig cfg = parse_train_config(text, config.string());
+    const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
+    auto* character_env = dynamic_cast<CharacterEnv*>(env.get());
+    if (!character_env) throw Error(config.string() + ": the recipe's environment has no character to pose from the clips");
+    const Demonstrations d = clip_demonstrations(*character_env, clips, kDemonstrationPasses);
+    write_demonstrations(a.out / "demos.csv", d);
+    spdlog::info("recorded {}: {} transitions of the clips ({} passes each), the discriminator's examples", (a.out / "demos.csv").string(),
+                 d.size(), kDemonstrationPasses);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(a.out, ignored);
+    throw;
   }
-  const std::string text = "# " + command_line(a) + "\n# the recipe configs/recipes/" + a.method + ".yaml with the clips filled in\n" +
-                           override_config(recipe.text, "configs/recipes/" + a.method + ".yaml", settings);
-  const fs::path config = a.out / "config.yaml";
-  write_file_atomic(config, text);
-  spdlog::info("{}: {} clip{} on {}, recipe {}", a.out.string(), clips.size(), clips.size() == 1 ? "" : "s", character.string(), a.method);
-  if (a.method == "tracking") return;
-  const TrainConfig cfg = parse_train_config(text, config.string());
-  const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
-  auto* character_env = dynamic_cast<CharacterEnv*>(env.get());
-  if (!character_env) throw Error(config.string() + ": the recipe's environment has no character to pose from the clips");
-  const Demonstrations d = clip_demonstrations(*character_env, clips, kDemonstrationPasses);
-  write_demonstrations(a.out / "demos.csv", d);
-  spdlog::info("recorded {}: {} transitions of the clips ({} passes each), the discriminator's examples", (a.out / "demos.csv").string(),
-               d.size(), kDemonstrationPasses);
 }
 
 // Trains to the run's iteration count; false when a stop request ended it first.
@@ -267,6 +277,7 @@ void write_report(const ImitateArgs& a, const Recipe& recipe, bool video) {
 void imitate(const ImitateArgs& a) {
   const Recipe& r = recipe(a.method);
   if (a.resume && !a.from.empty()) throw Error("--from starts a new run; a resumed run goes on from its own weights");
+  if (a.resume && !a.settings.empty()) throw Error("--set: a resumed run keeps the config it was started with");
   if (a.resume) {
     if (!a.clips.empty()) throw Error("--resume goes on with the run's own clips: give none");
     if (!fs::exists(a.out / "config.yaml") || !fs::exists(a.out / "checkpoint.pt"))
@@ -274,7 +285,16 @@ void imitate(const ImitateArgs& a) {
   } else {
     start_run(a, r);
   }
-  if (!train(a)) return;
+  bool finished = false;
+  try {
+    finished = train(a);
+  } catch (...) {
+    // A new run that failed before its first checkpoint cannot be resumed: leave nothing of it.
+    std::error_code ignored;
+    if (!a.resume && !fs::exists(a.out / "checkpoint.pt")) fs::remove_all(a.out, ignored);
+    throw;
+  }
+  if (!finished) return;
   const fs::path model = export_model(a.out);
   // Against each clip: eval.json for one, eval_<clip>.json for several.
   const std::vector<fs::path> clips = clips_of(model);
@@ -322,6 +342,9 @@ void add_imitate_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "collection threads (0: every core; default: the recipe's)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--trials", args->trials, "evaluation episodes and imitation trials")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--video-seconds", args->video_seconds, "length of the video (0: none)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--set", args->settings,
+                  "override a value of the recipe: KEY.PATH=VALUE (e.g. env.max_seconds=20, collect.envs=8); repeatable; recorded in the "
+                  "run's config");
   cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)");
   add_load_options(*cmd, args->load);
   cmd->callback([args] { imitate(*args); });

@@ -118,33 +118,52 @@ double reach_effectors(const Skeleton& sk, std::vector<Pose>& frames, const std:
       bounds.push_back(b);
     }
   }
+  // moves[c][g]: whether unknown c moves goal g (the root's position moves every goal).
+  std::vector<std::vector<bool>> moves(unknowns.size(), std::vector<bool>(goals.size(), true));
+  for (std::size_t c = 0; c < unknowns.size(); ++c) {
+    if (unknowns[c].joint < 0) continue;
+    for (std::size_t g = 0; g < goals.size(); ++g) {
+      bool below = false;
+      for (int j = sk.joints[static_cast<std::size_t>(goals[g].joint)].parent; j > 0 && !below; j = sk.joints[static_cast<std::size_t>(j)].parent)
+        below = j == unknowns[c].joint;
+      moves[c][g] = below;
+    }
+  }
   const auto rows = static_cast<Eigen::Index>(3 * goals.size() + 3), cols = static_cast<Eigen::Index>(unknowns.size());
-  constexpr double kStep = 1e-6, kDamping = 0.02, kTolerance = 1e-4;
+  constexpr double kDamping = 0.02, kTolerance = 1e-4;
   constexpr int kIterations = 30;
   LinkFrames fk;
-  Eigen::VectorXd residual(rows), moved(rows);
+  Eigen::VectorXd residual(rows);
   Eigen::MatrixXd jacobian(rows, cols);
   double worst = 0.0;
   for (std::size_t f = 0; f < frames.size(); ++f) {
     Pose& pose = frames[f];
     const Vec3 root_start = pose.root_pos;
     // residual: goal minus reached, per goal; and the root's pull back to where it was.
-    auto residual_of = [&](const Pose& p, Eigen::VectorXd& out) {
-      forward_kinematics(sk, p, fk);
+    auto update = [&] {
+      forward_kinematics(sk, pose, fk);
       for (std::size_t g = 0; g < goals.size(); ++g)
-        out.segment<3>(static_cast<Eigen::Index>(3 * g)) = goals[g].position[f] - fk.joint_pos[static_cast<std::size_t>(goals[g].joint)];
-      out.tail<3>() = root_weight * (root_start - p.root_pos);
+        residual.segment<3>(static_cast<Eigen::Index>(3 * g)) = goals[g].position[f] - fk.joint_pos[static_cast<std::size_t>(goals[g].joint)];
+      residual.tail<3>() = root_weight * (root_start - pose.root_pos);
     };
     for (int it = 0; it < kIterations; ++it) {
-      residual_of(pose, residual);
+      update();
       double largest = 0.0;
       for (std::size_t g = 0; g < goals.size(); ++g) largest = std::max(largest, residual.segment<3>(static_cast<Eigen::Index>(3 * g)).norm());
       if (largest < kTolerance) break;
+      // d(reached)/d(unknown): a rotation about world axis w at joint j moves a point p below it
+      // by w x (p - p_j); the root's position moves every goal with it.
+      jacobian.setZero();
       for (Eigen::Index c = 0; c < cols; ++c) {
-        Pose probe = pose;
-        apply(probe, unknowns[static_cast<std::size_t>(c)], kStep);
-        residual_of(probe, moved);
-        jacobian.col(c) = (residual - moved) / kStep;  // d(reached)/d(unknown)
+        const Unknown& u = unknowns[static_cast<std::size_t>(c)];
+        if (u.joint < 0) jacobian.block<3, 1>(rows - 3, c) = root_weight * u.axis;
+        const Vec3 world_axis = u.joint < 0 ? u.axis : Vec3(fk.joint_rot[static_cast<std::size_t>(u.joint)] * u.axis);
+        for (std::size_t g = 0; g < goals.size(); ++g) {
+          if (!moves[static_cast<std::size_t>(c)][g]) continue;
+          const Vec3 p = fk.joint_pos[static_cast<std::size_t>(goals[g].joint)];
+          jacobian.block<3, 1>(static_cast<Eigen::Index>(3 * g), c) =
+              u.joint < 0 ? u.axis : Vec3(world_axis.cross(p - fk.joint_pos[static_cast<std::size_t>(u.joint)]));
+        }
       }
       const Eigen::MatrixXd jjt = jacobian * jacobian.transpose() + kDamping * kDamping * Eigen::MatrixXd::Identity(rows, rows);
       const Eigen::VectorXd step = jacobian.transpose() * jjt.ldlt().solve(residual);
@@ -152,7 +171,7 @@ double reach_effectors(const Skeleton& sk, std::vector<Pose>& frames, const std:
       for (const Bound& b : bounds) clamp(pose, b);
     }
     for (std::size_t j = 1; j < pose.rot.size(); ++j) pose.rot[j] = canonical(pose.rot[j]);
-    residual_of(pose, residual);
+    update();
     for (std::size_t g = 0; g < goals.size(); ++g) worst = std::max(worst, residual.segment<3>(static_cast<Eigen::Index>(3 * g)).norm());
   }
   return worst;
