@@ -453,6 +453,18 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   file(RENAME ${OUT}/imitate_run/model ${OUT}/imitated_model)
   run_ok(eval ${OUT}/imitated_model --episodes 1 --trials 1 --clip ${OUT}/imitated_model/clips/jumping_jack_mirrored.mclip)
   expect_in("${LAST_OUT}" "phases of 'jumping_jack_mirrored'")
+  # Resumed to a larger budget: trained on, exported, evaluated and reported again, the report
+  # naming the run's own command and recipe; a resumed run keeps its recipe.
+  run_ok(imitate --resume -o ${OUT}/imitate_run --samples 512 --trials 1 --video-seconds 0)
+  expect_in("${LAST_OUT}" "iter     2/2  samples        512 (100.0 %)")
+  file(READ ${OUT}/imitate_run/report.md imitate_report)
+  expect_in("${imitate_report}" "# imitate_run: iccgan imitation of jumping_jack_mirrored")
+  expect_in("${imitate_report}" "--set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2`, then `mimic imitate --resume -o ")
+  expect_in("${imitate_report}" "| samples | 512 (2 iterations of 256) |")
+  if(NOT EXISTS ${OUT}/imitate_run/model/networks.mimic)
+    message(FATAL_ERROR "mimic imitate --resume exported no model")
+  endif()
+  run_fails("excludes" imitate --resume --method gail -o ${OUT}/imitate_run)
   # A CMU clip retargeted by a map, tracked (seed 003's recipe).
   run_ok(imitate ${DATA}/cmu-bvh/131_01.bvh --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking
          -o ${OUT}/imitate_cmu --samples 1 --trials 1 --video-seconds 0 --threads 1 --set collect.samples=128 --set collect.envs=2

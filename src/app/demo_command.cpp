@@ -142,10 +142,9 @@ void add_demo_command(CLI::App& app) {
       Clip clip = retarget(load_bvh(bvh, AxisConvention{"y", "z", 0.056444}), humanoid.skeleton, load_retarget_map(map), &report);
       clip.name = "cmu131_01_on_humanoid3d";
       show(clip, humanoid, *out, 0.0, *video, 120.0, summary);
-      std::string rep = fmt::format("retarget    scale {:.3f}; end-effector error (mean/max m):", report.scale);
-      for (const EffectorError& e : report.effectors) rep += fmt::format(" {} {:.3f}/{:.3f};", e.name, e.mean, e.max);
-      fmt::print("{}\n", rep);
-      summary += rep + "\n";
+      const std::string rep = "retarget    " + retarget_summary(report);
+      fmt::print("{}", rep);
+      summary += rep;
       // 4. The project's best walk (seed 004's ICCGAN, Table 2), on the runtime as a program would run it.
       const auto walk_model = std::filesystem::path(kSourceDir) / "models/humanoid_walk_iccgan";
       if (std::filesystem::exists(walk_model / "networks.mimic")) {

@@ -60,6 +60,11 @@ std::string duration(double seconds) {
   return fmt::format("{}s", s);
 }
 
+// Iterations of `per_iteration` samples that cover `samples` (at least one).
+int iterations_for(long long samples, long long per_iteration) {
+  return static_cast<int>(std::max(1LL, (samples + per_iteration - 1) / per_iteration));
+}
+
 // The command line that makes this run, for its report.
 std::string command_line(const ImitateArgs& a) {
   std::string line = "mimic imitate";
@@ -127,7 +132,7 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   const TrainConfig recipe_cfg = parse_train_config(override_config(recipe.text, recipe_source, a.settings), recipe_source);
   const long long per_iteration = recipe_cfg.collect.samples;
   const long long samples = a.samples > 0 ? a.samples : per_iteration * recipe_cfg.iterations;
-  std::vector<std::string> settings{fmt::format("iterations={}", std::max(1LL, (samples + per_iteration - 1) / per_iteration)),
+  std::vector<std::string> settings{fmt::format("iterations={}", iterations_for(samples, per_iteration)),
                                     fmt::format("seed={}", a.seed)};
   if (a.threads >= 0) settings.push_back(fmt::format("collect.threads={}", resolve_threads(a.threads)));
   std::string clip_list;
@@ -173,7 +178,7 @@ bool train(const ImitateArgs& a) {
   const fs::path config = a.out / "config.yaml";
   TrainConfig cfg = parse_train_config(read_text_file(config), config.string());
   if (a.resume && a.samples > 0)
-    cfg.iterations = static_cast<int>(std::max(1LL, (a.samples + cfg.collect.samples - 1) / cfg.collect.samples));
+    cfg.iterations = iterations_for(a.samples, cfg.collect.samples);
   if (a.resume && a.threads >= 0) cfg.collect.threads = resolve_threads(a.threads);
   TrainOptions opts;
   opts.run_dir = a.out;
@@ -241,16 +246,22 @@ fs::path eval_file(const fs::path& run, const fs::path& clip, std::size_t clips)
   return clips == 1 ? run / "eval.json" : run / ("eval_" + clip.stem().string() + ".json");
 }
 
-void write_report(const ImitateArgs& a, const Recipe& recipe, bool video) {
+void write_report(const ImitateArgs& a, bool video) {
   const MetricsTable t = read_metrics_csv(a.out / "metrics.csv");
-  const TrainConfig cfg = parse_train_config(read_text_file(a.out / "config.yaml"), (a.out / "config.yaml").string());
+  const std::string config_text = read_text_file(a.out / "config.yaml");
+  const TrainConfig cfg = parse_train_config(config_text, (a.out / "config.yaml").string());
+  // The run's own method and command (a resumed run's arguments name neither): its rewards say
+  // which recipe it is, and start_run wrote the command as the config's first line.
+  const std::string method = !cfg.rewards.empty() && cfg.rewards[0].source != "env" ? cfg.rewards[0].source : "tracking";
+  std::string made_by = config_text.rfind("# mimic imitate ", 0) == 0 ? config_text.substr(2, config_text.find('\n') - 2) : command_line(a);
+  if (a.resume) made_by += "`, then `mimic imitate --resume -o " + a.out.string();
   const double samples = t.column("samples").back(), wall = t.column("wall_s").back();
   const std::vector<fs::path> clips = clips_of(a.out);
   std::string names;
   for (const fs::path& c : clips) names += (names.empty() ? "" : ", ") + c.stem().string();
-  std::string text = fmt::format("# {}: {} imitation of {}\n\n", a.out.filename().string(), recipe.method, names);
+  std::string text = fmt::format("# {}: {} imitation of {}\n\n", a.out.filename().string(), method, names);
   text += fmt::format("Made by `{}`: the recipe configs/recipes/{}.yaml (the run's config.yaml is it with the clips filled in).\n\n",
-                      command_line(a), recipe.method);
+                      made_by, method);
   text += "| | |\n|---|---|\n";
   text += fmt::format("| samples | {:.0f} ({} iteration{} of {}) |\n", samples, t.rows.size(), t.rows.size() == 1 ? "" : "s",
                       cfg.collect.samples);
@@ -275,7 +286,6 @@ void write_report(const ImitateArgs& a, const Recipe& recipe, bool video) {
 }
 
 void imitate(const ImitateArgs& a) {
-  const Recipe& r = recipe(a.method);
   if (a.resume && !a.from.empty()) throw Error("--from starts a new run; a resumed run goes on from its own weights");
   if (a.resume && !a.settings.empty()) throw Error("--set: a resumed run keeps the config it was started with");
   if (a.resume) {
@@ -283,7 +293,7 @@ void imitate(const ImitateArgs& a) {
     if (!fs::exists(a.out / "config.yaml") || !fs::exists(a.out / "checkpoint.pt"))
       throw Error(a.out.string() + ": no run to resume (config.yaml and checkpoint.pt); start one without --resume");
   } else {
-    start_run(a, r);
+    start_run(a, recipe(a.method));
   }
   bool finished = false;
   try {
@@ -317,7 +327,7 @@ void imitate(const ImitateArgs& a) {
     }
   }
   write_curves(a.out);
-  write_report(a, r, video);
+  write_report(a, video);
   spdlog::info("wrote {}: the model, its evaluation, {}curves.png and report.md", a.out.string(), video ? "video.mp4, " : "");
 }
 
@@ -329,7 +339,7 @@ void add_imitate_command(CLI::App& app) {
   cmd->add_option("clips", args->clips, "motion clips (.mclip, .bvh, .amc, DeepMimic .txt); several train one policy from all")
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--out", args->out, "run directory to write (the model, eval.json, video.mp4, report.md end up in it)")->required();
-  cmd->add_option("--method", args->method, "iccgan (seed 004's discriminator ensemble), gail (seed 000) or tracking (seed 003)")
+  CLI::Option* method = cmd->add_option("--method", args->method, "iccgan (seed 004's discriminator ensemble), gail (seed 000) or tracking (seed 003)")
       ->capture_default_str()
       ->check(CLI::IsMember({"iccgan", "gail", "tracking"}));
   cmd->add_option("--map", args->map, "retarget map (YAML, docs/retargeting.md) for clips whose skeleton is not the character's")
@@ -345,7 +355,8 @@ void add_imitate_command(CLI::App& app) {
   cmd->add_option("--set", args->settings,
                   "override a value of the recipe: KEY.PATH=VALUE (e.g. env.max_seconds=20, collect.envs=8); repeatable; recorded in the "
                   "run's config");
-  cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)");
+  cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)")
+      ->excludes(method);  // a resumed run keeps its own recipe
   add_load_options(*cmd, args->load);
   cmd->callback([args] { imitate(*args); });
 }

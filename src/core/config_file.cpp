@@ -41,20 +41,22 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   return YAML::Clone(over);
 }
 
-YAML::Node resolve(const std::filesystem::path& path, std::vector<std::filesystem::path>& chain, std::vector<std::string>& names) {
+// `root` (parsed from `path`) with its `extends` chain merged under it.
+YAML::Node resolve(const std::filesystem::path& path, YAML::Node root, std::vector<std::filesystem::path>& chain,
+                   std::vector<std::string>& names) {
   const YamlReader r(path.string());
-  YAML::Node root = r.parse(read_text_file(path, kMaxYamlBytes), "not valid YAML");
   if (!root.IsMap() || !root["extends"].IsDefined()) return root;
   const YAML::Node base_name = root["extends"];
   if (!base_name.IsScalar() || base_name.Scalar().empty()) r.fail(base_name, "'extends' names one base config file (a path)");
-  const std::filesystem::path base = std::filesystem::weakly_canonical(path.parent_path() / base_name.Scalar());
+  const std::filesystem::path base_path = path.parent_path() / base_name.Scalar(), base = std::filesystem::weakly_canonical(base_path);
   if (std::find(chain.begin(), chain.end(), base) != chain.end())
     r.fail(base_name, "'extends: " + base_name.Scalar() + "' comes back to a config already in the chain");
   if (chain.size() >= static_cast<std::size_t>(kMaxDepth)) r.fail(base_name, "'extends' chains more than 8 configs");
   if (!std::filesystem::is_regular_file(base)) r.fail(base_name, "'extends': " + base.string() + " not found (a path from this config's directory)");
   chain.push_back(base);
-  names.push_back((path.parent_path() / base_name.Scalar()).lexically_normal().string());
-  const YAML::Node base_root = resolve(path.parent_path() / base_name.Scalar(), chain, names);
+  names.push_back(base_path.lexically_normal().string());
+  const YAML::Node base_root =
+      resolve(base_path, YamlReader(base_path.string()).parse(read_text_file(base_path, kMaxYamlBytes), "not valid YAML"), chain, names);
   if (!base_root.IsMap()) r.fail(base_name, "'extends': " + base.string() + " is not a mapping of sections");
   root.remove("extends");
   return merged(base_root, root);
@@ -64,14 +66,11 @@ YAML::Node resolve(const std::filesystem::path& path, std::vector<std::filesyste
 
 std::string read_config_file(const std::filesystem::path& path) {
   const std::string text = read_text_file(path, kMaxYamlBytes);
-  {
-    const YamlReader r(path.string());
-    const YAML::Node root = r.parse(text, "not valid YAML");
-    if (!root.IsMap() || !root["extends"].IsDefined()) return text;
-  }
+  const YAML::Node root = YamlReader(path.string()).parse(text, "not valid YAML");
+  if (!root.IsMap() || !root["extends"].IsDefined()) return text;
   std::vector<std::filesystem::path> chain{std::filesystem::weakly_canonical(path)};
   std::vector<std::string> names;  // the bases as this config's directory reaches them
-  const YAML::Node resolved = resolve(path, chain, names);
+  const YAML::Node resolved = resolve(path, root, chain, names);
   std::string note = "# " + path.string();
   for (const std::string& name : names) note += " extending " + name;
   YAML::Emitter out;

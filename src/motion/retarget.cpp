@@ -251,10 +251,10 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
     report->ground_shift = shift;
     report->effectors.clear();
     const Vec3 up(0, 0, shift);
+    const std::vector<Vec3> root = target_track(out.frames, 0);
     for (const std::string& name : map.end_effectors) {
       const auto [tj, sj] = mapped(name, "end effector");
       const std::vector<Vec3> want = source_track(sj), got = target_track(out.frames, tj), before = target_track(transferred, tj);
-      const std::vector<Vec3> root = target_track(out.frames, 0);
       EffectorError e{name, 0.0, 0.0, 0.0, 0.0};
       for (std::size_t f = 0; f < want.size(); ++f) {
         const double err = ((want[f] - scaled[f][static_cast<std::size_t>(source_of[0])]) - (got[f] - root[f])).norm();
