@@ -33,7 +33,7 @@ TEST(ConfigFile, WithoutExtendsTheTextIsAsWritten) {
 TEST(ConfigFile, TheConfigsKeysMergeOverItsBase) {
   const auto dir = scratch();
   write_file_atomic(dir / "recipes/base.yaml",
-                    "seed: 1\nenv: {name: humanoid_forward, init: mocap, fall_links: [root, chest]}\n"
+                    "seed: 1\nenv: {name: imitation, init: mocap, fall_links: [root, chest]}\n"
                     "collect: {envs: 16, threads: 2}\nrewards:\n  - {source: iccgan, expert: demos.csv, heads: 32}\n  - {source: env}\n");
   write_file_atomic(dir / "skill.yaml",
                     "extends: recipes/base.yaml\nenv: {clip: walk.txt, fall_links: [root]}\ncollect: {threads: 1}\n"
@@ -41,7 +41,7 @@ TEST(ConfigFile, TheConfigsKeysMergeOverItsBase) {
   const YAML::Node c = resolved(dir / "skill.yaml");
   EXPECT_FALSE(c["extends"].IsDefined());
   EXPECT_EQ(c["seed"].as<int>(), 1);                                   // the base's
-  EXPECT_EQ(c["env"]["name"].as<std::string>(), "humanoid_forward");   // a mapping merges key by key
+  EXPECT_EQ(c["env"]["name"].as<std::string>(), "imitation");   // a mapping merges key by key
   EXPECT_EQ(c["env"]["clip"].as<std::string>(), "walk.txt");           // added
   ASSERT_EQ(c["env"]["fall_links"].size(), 1u);                        // a list is replaced whole
   EXPECT_EQ(c["collect"]["envs"].as<int>(), 16);

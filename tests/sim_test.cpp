@@ -6,7 +6,9 @@
 
 #include "core/error.hpp"
 #include "motion/bvh.hpp"
+#include "motion/builtin.hpp"
 #include "motion/deepmimic.hpp"
+#include "motion/kinematics.hpp"
 #include "sim/character_model.hpp"
 #include "sim/world.hpp"
 #include "humanoid_data.hpp"
@@ -377,4 +379,59 @@ TEST(SimWorld, MomentumOfTwoSpheresIsTheHandWorkedOne) {
   EXPECT_LT((hinge.angular - Vec3(0, 0.008, 0)).norm(), 1e-9);
   EXPECT_LT(w.velocity().root_lin.norm(), 1e-12);  // the world's own state: still at rest
   EXPECT_THROW((void)w.momentum_of(Pose{}, v), Error);
+}
+
+// A foot without a toe joint stands on a sole box: 1.25 radii behind the ankle to 2.75 ahead of
+// its sole site, 2.25 radii wide, 1.25 thick, its bottom at the site (the built-in humanoid's
+// ankle radius is 4 cm, its sole 6 cm below and 4 cm ahead of the ankle). Standing, each sole
+// touches the floor at its four corners, a support an ankle torque can push against (a capsule's
+// end touches at one point); a foot with a toe joint keeps its capsule.
+TEST(SimCharacter, AFootWithoutToesStandsOnASoleBox) {
+  const CharacterModel ch = CharacterModel::from_skeleton(builtin_humanoid(), "builtin");
+  const BodyDef& foot = ch.bodies[static_cast<std::size_t>(ch.skeleton.find("left_ankle"))];
+  EXPECT_EQ(foot.shape, "box");
+  EXPECT_NEAR(foot.size.x(), 0.05 + 0.04 + 0.11, 1e-12);
+  EXPECT_NEAR(foot.size.y(), 0.09, 1e-12);
+  EXPECT_NEAR(foot.size.z(), 0.05, 1e-12);
+  EXPECT_NEAR(foot.pos.x(), (-0.05 + 0.15) / 2, 1e-12);
+  EXPECT_NEAR(foot.pos.z() - foot.size.z() / 2, -0.06, 1e-12);
+  World w(ch);
+  w.set_state(rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height())));
+  w.set_pd_targets(rest_pose(ch.skeleton));
+  w.step();
+  const int left_foot = mj_name2id(w.model(), mjOBJ_BODY, "left_ankle");
+  int corners = 0;
+  for (int c = 0; c < w.data()->ncon; ++c) {
+    const mjContact& con = w.data()->contact[c];
+    if (w.model()->geom_bodyid[con.geom1] == left_foot || w.model()->geom_bodyid[con.geom2] == left_foot) ++corners;
+  }
+  EXPECT_EQ(corners, 4);
+  // CMU's feet have toes: their capsules stay.
+  std::filesystem::path bvh;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
+  const CharacterModel cmu = CharacterModel::from_skeleton(load_bvh(bvh, AxisConvention{"y", "z", 0.056444}).skeleton, "cmu131", 60.0);
+  EXPECT_EQ(cmu.bodies[static_cast<std::size_t>(cmu.skeleton.find("LeftAnkle"))].shape, "capsule");
+}
+
+// The demo's squat: a 2 s loop from standing to a shallow squat (knees bent 1 rad at 1 s) and
+// back, the soles on the floor at every frame.
+TEST(SimCharacter, TheBuiltInSquatKeepsItsSolesOnTheFloor) {
+  const Clip squat = builtin_squat();
+  EXPECT_EQ(squat.loop, LoopMode::Wrap);
+  EXPECT_NEAR(squat.duration(), 2.0, 1e-9);
+  const Skeleton& sk = squat.skeleton;
+  const int knee = sk.find("left_knee");
+  EXPECT_NEAR(revolute_angle(sk.joints[static_cast<std::size_t>(knee)], squat.sample(1.0).rot[static_cast<std::size_t>(knee)]), -1.0, 1e-6);
+  double lowest_root = 1e9, highest_root = 0;
+  for (const Pose& p : squat.frames) {
+    Clip one = squat;
+    one.frames = {p};
+    EXPECT_NEAR(clip_min_height(one), 0.0, 1e-9);
+    const LinkFrames links = forward_kinematics(sk, p);
+    for (const char* sole : {"left_sole", "right_sole"})
+      EXPECT_NEAR(links.site_pos[static_cast<std::size_t>(sk.find_site(sole))].z(), 0.0, 0.01) << sole;
+    lowest_root = std::min(lowest_root, p.root_pos.z());
+    highest_root = std::max(highest_root, p.root_pos.z());
+  }
+  EXPECT_GT(highest_root - lowest_root, 0.1);  // it goes down
 }

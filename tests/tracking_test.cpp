@@ -173,7 +173,7 @@ TEST(TrackingEnv, StartsFixedOrAnywhereOnTheClipAndEndsAsTheClipSays) {
   const auto kick = test::humanoid3d_motion(ch, "humanoid3d_kick.txt");
   ASSERT_EQ(kick->loop, LoopMode::None);
   TrackingConfig cfg;
-  cfg.early_termination = false;
+  cfg.env.early_termination = false;
   auto rsi = make_tracking_env(ch, kick, cfg);
   std::mt19937_64 rng(3);
   std::vector<double> starts;
@@ -205,8 +205,8 @@ TEST(TrackingEnv, SinkingBelowHalfTheReferencesRootHeightIsAFall) {
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   auto run = [&](double fall_height) {
     TrackingConfig cfg;
-    cfg.max_seconds = 3.0;
-    cfg.fall_height = fall_height;
+    cfg.env.max_seconds = 3.0;
+    cfg.env.fall_height = fall_height;
     auto env = env_at_clip_start(ch, walk, cfg);
     const Eigen::VectorXd fold = env->action_for(test::folded(ch, walk->frames[0]));
     StepResult r;
@@ -233,7 +233,7 @@ TEST(TrackingEnv, FallingBehindTheReferenceByMaxDriftEndsTheEpisodeAsAFailure) {
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   auto run = [&](double max_drift) {
     TrackingConfig cfg;
-    cfg.max_drift = max_drift;
+    cfg.env.max_drift = max_drift;
     auto env = env_at_clip_start(ch, walk, cfg);
     EXPECT_LT(env->drift(), 1e-9);  // starts on the reference's root
     const Eigen::VectorXd hold = env->action_for(walk->frames[0]);
@@ -265,7 +265,7 @@ TEST(TrackingEnv, ReferenceRootIsTheClipsRootInTheCharactersHeadingFrame) {
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig cfg;
-  cfg.observations.names = {"full_state", "reference_root", "phase"};
+  cfg.env.observations.names = {"full_state", "reference_root", "phase"};
   auto env = env_at_clip_start(ch, walk, cfg);
   const ObservationSlice slice = env->observation_layout()[1];
   ASSERT_EQ(slice.name, "reference_root");

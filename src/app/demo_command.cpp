@@ -1,7 +1,8 @@
 // mimic demo: the README's first command. Motion import, retargeting and pictures; then learning:
-// a tracking policy trained for a few minutes on the built-in jumping jack, evaluated (imitation
-// error before and after) and filmed with the clip as a ghost; with ../shared, the project's
-// pretrained walk (the ICCGAN walk of seed 004's Table 2) evaluated and filmed the same way.
+// a tracking policy trained for about four minutes on the built-in squat, evaluated (imitation
+// error before and after) and filmed with the clip as a ghost; with ../shared, the project's best
+// skills (the ICCGAN walk, run, kick and punch of seed 004's Table 2) evaluated and filmed the
+// same way.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -25,6 +26,9 @@
 namespace mimic::app {
 
 namespace {
+
+// The demo's training: about four minutes on two cores.
+constexpr int kDemoIterations = 300;
 
 // Summary, .mclip, .svg picture and (unless disabled) an .mp4 of the clip on `ch`.
 void show(const Clip& clip, const CharacterModel& ch, const std::filesystem::path& dir, double seconds, bool video,
@@ -73,15 +77,24 @@ void film(const Skill& skill, const std::filesystem::path& out, double seconds) 
   }
 }
 
-// Seed 003's tracking on the built-in clip and body: a few minutes of PPO from scratch.
-void learn_jumping_jack(const Clip& jack, const std::filesystem::path& dir, int iterations, bool video, std::string& summary) {
-  const auto ch = std::make_shared<const CharacterModel>(CharacterModel::from_skeleton(jack.skeleton, "builtin_humanoid"));
-  const auto clip = std::make_shared<const Clip>(jack);
+// The shipped model of each of seed 004's Table 2 skills (models/README.md).
+std::string best_model(const std::string& skill) {
+  if (skill == "walk") return "humanoid_walk_iccgan";
+  if (skill == "run") return "humanoid_run_iccgan_straight_loop";
+  if (skill == "kick") return "humanoid_kick_iccgan_total";
+  return "humanoid_punch_iccgan_annealed";
+}
+
+// Seed 003's tracking on a built-in clip and body: a few minutes of PPO from scratch.
+void learn_builtin(const Clip& learnt, const std::filesystem::path& dir, int iterations, bool video, std::string& summary) {
+  const auto ch = std::make_shared<const CharacterModel>(CharacterModel::from_skeleton(learnt.skeleton, "builtin_humanoid"));
+  const auto clip = std::make_shared<const Clip>(learnt);
+  const std::string name = learnt.name;
   TrackingConfig tc;
-  tc.fall_links = {"root", "chest", "neck"};  // everything but limbs ends an episode
-  tc.max_seconds = 6.0;
+  tc.env.fall_links = {"root", "chest", "neck"};  // everything but limbs ends an episode
+  tc.env.max_seconds = 6.0;
   TrainOptions opts;
-  opts.run_dir = dir / "jumping_jack_run";
+  opts.run_dir = dir / (name + "_run");
   std::filesystem::remove_all(opts.run_dir);
   opts.env_factory = [ch, clip, tc] { return std::unique_ptr<Env>(make_tracking_env(*ch, clip, tc)); };
   opts.on_iteration = [iterations](const IterationMetrics& m) {
@@ -89,7 +102,7 @@ void learn_jumping_jack(const Clip& jack, const std::filesystem::path& dir, int 
       spdlog::info("  iteration {:3}/{}: {:7.0f} samples, reward per step {:.3f}", m.iteration, iterations, m.get("samples"), m.get("reward"));
   };
   const std::string config = fmt::format(
-      "# mimic demo: tracking the built-in jumping jack (seed 003's reward, random-phase starts)\n"
+      "# mimic demo: tracking a built-in clip (seed 003's reward, random-phase starts)\n"
       "seed: 1\niterations: {}\ncheckpoint_every: 20\ncollect: {{envs: 8, threads: 2, samples: 2048}}\n"
       "policy: {{hidden: [128, 128], activation: relu, log_std: -2.0, learn_std: false}}\nvalue: {{hidden: [128, 128], activation: relu}}\n"
       "ppo: {{gamma: 0.95, lambda: 0.95, epochs: 5, value_epochs: 5, minibatch: 256, kl_target: 0.02}}\n"
@@ -97,17 +110,17 @@ void learn_jumping_jack(const Clip& jack, const std::filesystem::path& dir, int 
       iterations);
   Trainer trainer(parse_train_config(config, "mimic demo"), opts);
   // The policy acts on the runtime (control/), from the trainer's networks as export writes them.
-  auto skill = [&] { return skill_in(opts.env_factory, trainer.runtime_networks(), opts.run_dir / "checkpoint.pt", "jumping_jack"); };
+  auto skill = [&] { return skill_in(opts.env_factory, trainer.runtime_networks(), opts.run_dir / "checkpoint.pt", name); };
   const std::string before = imitation_line(*skill(), 10);
-  spdlog::info("learning: tracking the jumping jack ({} iterations of 2,048 samples; before training: {})", iterations, before);
+  spdlog::info("learning: tracking the {} ({} iterations of 2,048 samples; before training: {})", name, iterations, before);
   trainer.run();
   const std::shared_ptr<const Skill> trained = skill();
   const std::string after = imitation_line(*trained, 10);
-  const std::string line = fmt::format("learning    jumping_jack tracked after {} samples: {} (untrained: {}); run in {}", trainer.samples(),
+  const std::string line = fmt::format("learning    {} tracked after {} samples: {} (untrained: {}); run in {}", name, trainer.samples(),
                                        after, before, opts.run_dir.string());
   fmt::print("{}\n", line);
   summary += line + "\n";
-  if (video) film(*trained, dir / "jumping_jack_policy.mp4", 6.0);
+  if (video) film(*trained, dir / (name + "_policy.mp4"), 6.0);
 }
 
 }  // namespace
@@ -115,19 +128,20 @@ void learn_jumping_jack(const Clip& jack, const std::filesystem::path& dir, int 
 void add_demo_command(CLI::App& app) {
   auto out = std::make_shared<std::filesystem::path>("out/demo");
   auto video = std::make_shared<bool>(true);
-  auto iterations = std::make_shared<int>(60);
+  auto iterations = std::make_shared<int>(kDemoIterations);
   CLI::App* demo = app.add_subcommand("demo", "run mimic's showcase on built-in (and, if present, shared) motion");
   demo->add_option("-o,--output", *out, "output directory")->capture_default_str();
   demo->add_flag("!--no-video", *video, "skip the videos (pictures and clips only)");
-  demo->add_option("--train-iterations", *iterations, "PPO iterations of the jumping-jack tracking policy (0: skip learning)")
+  demo->add_option("--train-iterations", *iterations, "PPO iterations of 2,048 samples of the squat's tracking policy (0: skip learning)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   demo->callback([out, video, iterations] {
     std::string summary;
     // 1. Motion the project authors itself, on a simple body: always available.
-    const Clip jack = builtin_jumping_jack();
+    const Clip jack = builtin_jumping_jack(), squat = builtin_squat();
     show(jack, CharacterModel::from_skeleton(jack.skeleton, "builtin_humanoid"), *out, 3.0, *video, 160.0, summary);
-    if (*iterations > 0) learn_jumping_jack(jack, *out, *iterations, *video, summary);
+    show(squat, CharacterModel::from_skeleton(squat.skeleton, "builtin_humanoid"), *out, 4.0, *video, 120.0, summary);
+    if (*iterations > 0) learn_builtin(squat, *out, *iterations, *video, summary);
     // 2. Real capture: CMU walk retargeted onto the DeepMimic humanoid, when ../shared is here.
     const auto data = shared_data_dir();
     const auto bvh = data / "cmu-bvh/131_01.bvh", ch = data / "deepmimic/characters/humanoid3d.txt";
@@ -145,14 +159,17 @@ void add_demo_command(CLI::App& app) {
       const std::string rep = "retarget    " + retarget_summary(report);
       fmt::print("{}", rep);
       summary += rep;
-      // 4. The project's best walk (seed 004's ICCGAN, Table 2), on the runtime as a program would run it.
-      const auto walk_model = std::filesystem::path(kSourceDir) / "models/humanoid_walk_iccgan";
-      if (std::filesystem::exists(walk_model / "networks.mimic")) {
-        const std::shared_ptr<const Skill> walk = run_skill(walk_model);
-        const std::string line = "pretrained  " + walk_model.filename().string() + ": " + imitation_line(*walk, 10, &walk_clip);
+      // 4. The project's best skills (seed 004's ICCGAN, Table 2), on the runtime as a program would run them.
+      for (const char* skill : {"walk", "run", "kick", "punch"}) {
+        const auto model = std::filesystem::path(kSourceDir) / "models" / best_model(skill);
+        if (!std::filesystem::exists(model / "networks.mimic")) continue;
+        const Clip reference =
+            load_deepmimic_motion(data / ("deepmimic/motions/humanoid3d_" + std::string(skill) + ".txt"), humanoid.skeleton);
+        const std::shared_ptr<const Skill> policy = run_skill(model);
+        const std::string line = "pretrained  " + model.filename().string() + ": " + imitation_line(*policy, 10, &reference);
         fmt::print("{}\n", line);
         summary += line + "\n";
-        if (*video) film(*walk, *out / "humanoid_walk_iccgan_policy.mp4", 8.0);
+        if (*video) film(*policy, *out / (model.filename().string() + "_policy.mp4"), 8.0);
       }
     } else {
       spdlog::info("shared data not found (../shared/data or $MIMIC_DATA): showing the built-in clip only");

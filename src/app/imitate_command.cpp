@@ -310,7 +310,7 @@ void imitate(const ImitateArgs& a) {
   const std::vector<fs::path> clips = clips_of(model);
   for (const fs::path& clip : clips) {
     EvalArgs e;
-    // The clip named: a humanoid_forward environment draws starts from its clips but tracks none.
+    // The clip named: an imitation environment draws starts from its clips but tracks none.
     e.run = model, e.episodes = a.trials, e.trials = a.trials, e.json = eval_file(a.out, clip, clips.size()), e.clip = clip;
     evaluate(e);
   }

@@ -58,7 +58,7 @@ void add_imitation_commands(CLI::App& app) {
   };
   auto clip_args = std::make_shared<ClipArgs>();
   CLI::App* rc = app.add_subcommand("record-clip", "demonstrations from a motion clip: the environment's observations of its states (no actions)");
-  rc->add_option("config", clip_args->config, "training config whose env is a character environment (e.g. humanoid_forward)")
+  rc->add_option("config", clip_args->config, "training config whose env is a character environment (e.g. imitation)")
       ->required()->check(CLI::ExistingFile);
   rc->add_option("--clip", clip_args->clips, "motion clip (.mclip, .bvh, .amc, DeepMimic .txt); repeat it for several clips in one file")
       ->required()

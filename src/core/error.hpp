@@ -3,6 +3,7 @@
 // a label for in-memory text), the place in it (line, frame, key) and what is wrong.
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace mimic {
 
@@ -22,6 +23,19 @@ class ParseError : public Error {
  private:
   std::string source_;
   int line_;
+};
+
+// A value that is wrong for the object it configures, found by that object (not by a parser):
+// `key` names the configuration key (e.g. "max_drift"), so that a config reader can point at
+// the line that set it. what() is "'key' message".
+class KeyError : public Error {
+ public:
+  KeyError(std::string key, std::string message) : Error("'" + key + "' " + message), key_(std::move(key)), message_(std::move(message)) {}
+  const std::string& key() const { return key_; }
+  const std::string& message() const { return message_; }  // without the key
+
+ private:
+  std::string key_, message_;
 };
 
 // A long computation stopped on request (Ctrl-C, SIGTERM): thrown from inside collection and

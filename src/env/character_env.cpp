@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "motion/kinematics.hpp"
 
 namespace mimic {
 
@@ -70,21 +71,48 @@ MjcfOptions model_options(const Terrain& terrain, const CharacterEnvConfig& cfg)
   return opts;
 }
 
+// The terrain and the pushes, their errors named by their config keys.
+Terrain make_terrain(const TerrainSpec& spec) {
+  try {
+    return Terrain(spec);
+  } catch (const KeyError&) {
+    throw;
+  } catch (const Error& e) {
+    throw KeyError("terrain", e.what());
+  }
+}
+
+Pusher make_pusher(const World& world, const std::vector<PushSpec>& pushes) {
+  try {
+    return Pusher(world, pushes);
+  } catch (const Error& e) {
+    throw KeyError("pushes", e.what());
+  }
+}
+
+// What the constructor's members do not check themselves.
+void check(const CharacterEnvConfig& cfg) {
+  if (!(cfg.max_seconds > 0) || !std::isfinite(cfg.max_seconds)) throw KeyError("max_seconds", "must be positive seconds");
+  if (!(cfg.max_drift >= 0) || !std::isfinite(cfg.max_drift)) throw KeyError("max_drift", "must be non-negative metres (0: off)");
+  if (!(cfg.fall_height >= 0) || !(cfg.fall_height <= 1)) throw KeyError("fall_height", "must be a fraction in [0, 1] (0: off)");
+  if (!(cfg.start_momentum.window >= 0) || !std::isfinite(cfg.start_momentum.window))
+    throw KeyError("start_momentum_window", "must be non-negative seconds (0: off)");
+}
+
 }  // namespace
 
 CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& cfg, std::shared_ptr<const Clip> reference)
-    : cfg_(cfg),
-      terrain_(cfg.terrain),
+    : cfg_((check(cfg), cfg)),
+      terrain_(make_terrain(cfg.terrain)),
       world_(ch, cfg.sim, model_options(terrain_, cfg)),
       reference_(std::move(reference)),
       obs_(world_, cfg.observations, reference_ != nullptr),
-      pusher_(world_, cfg.pushes) {
+      pusher_(make_pusher(world_, cfg.pushes)) {
   terrain_.install(world_.model());
   if (cfg.projectiles.enabled) launcher_ = std::make_unique<ProjectileLauncher>(world_, cfg.projectiles);
   const Skeleton& sk = ch.skeleton;
   if (reference_ && reference_->skeleton.num_joints() != sk.num_joints())
     throw Error("reference clip '" + reference_->name + "' does not fit character '" + ch.name + "'");
-  if (!(cfg.max_seconds > 0)) throw Error("max_seconds must be positive");
   for (const Joint& j : sk.joints) {
     if (j.type == JointType::Spherical) action_size_ += cfg.action_mode == ActionMode::AxisAngle ? 3 : 4;
     if (j.type == JointType::Revolute) action_size_ += 1;
@@ -95,10 +123,35 @@ CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& c
   } else {
     for (const std::string& name : cfg.fall_links) {
       const int j = sk.find(name);
-      if (j < 0) throw Error("fall_links: character '" + ch.name + "' has no body '" + name + "'");
+      if (j < 0) throw KeyError("fall_links", "names '" + name + "', a body character '" + ch.name + "' does not have");
       fall_joints_.push_back(j);
     }
   }
+  if (cfg.allow_clip_contacts && reference_) allow_contacts_of(*reference_);
+}
+
+void CharacterEnv::allow_contacts_of(const Clip& clip) {
+  const CharacterModel& ch = world_.character();
+  if (clip.skeleton.num_joints() != ch.skeleton.num_joints())
+    throw Error("clip '" + clip.name + "' does not fit character '" + ch.name + "'");
+  // Frames each body rests on the ground: near it, with its joint low (a shin beside a planted
+  // foot comes as near in a run, its knee high above). Resting takes kClipContactSeconds in all.
+  const double low = kClipContactJointHeight * ch.rest_root_height();
+  std::vector<int> resting(clip.skeleton.joints.size(), 0);
+  LinkFrames links;
+  for (const Pose& p : clip.frames) {
+    const std::vector<bool> near = world_.ground_contacts_of(p, kClipContactGap);
+    forward_kinematics(clip.skeleton, p, links);
+    for (std::size_t j = 0; j < near.size(); ++j) resting[j] += near[j] && links.joint_pos[j].z() < low ? 1 : 0;
+  }
+  const double needed = kClipContactSeconds * clip.fps;
+  std::erase_if(fall_joints_, [&](int j) { return resting[static_cast<std::size_t>(j)] >= needed; });
+}
+
+std::vector<std::string> CharacterEnv::fall_bodies() const {
+  std::vector<std::string> names;
+  for (const int j : fall_joints_) names.push_back(world_.character().skeleton.joints[static_cast<std::size_t>(j)].name);
+  return names;
 }
 
 void CharacterEnv::set_pushes(std::vector<PushSpec> pushes) {

@@ -39,6 +39,10 @@ struct CharacterEnvConfig {
   // Bodies whose ground contact ends the episode as a fall. Empty: the character's own choice
   // (DeepMimic's EnableFallContact). early_termination = false turns falls off (contact-rich clips).
   std::vector<std::string> fall_links;
+  // Bodies that the clips themselves rest on the ground (CharacterEnv::allow_contacts_of: a
+  // get-up's hands, elbows and back) touch it without a fall; the rest of fall_links stay falls. A
+  // rule from the clip, so one recipe holds for a walk and a get-up alike.
+  bool allow_clip_contacts = false;
   bool early_termination = true;
   // > 0: also a fall when the root is below this fraction of the reference's root height at the
   // current clip time, e.g. sitting on the thighs with the torso off the ground, which no torso
@@ -126,7 +130,7 @@ class CharacterEnv : public Env {
   mjData_* physics_data() const override { return world_.data(); }
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
-  // Starts in groups a caller can choose among (humanoid_forward: one group per clip of its list),
+  // Starts in groups a caller can choose among (imitation: one group per clip of its list),
   // so a behaviour context can start each episode from its own clip. The sampler reads the choice.
   int start_groups() const { return start_groups_; }
   void set_start_groups(int n) { start_groups_ = n; }
@@ -140,6 +144,18 @@ class CharacterEnv : public Env {
   // The most one step can earn, for normalised returns; 0 when the task does not bound it.
   double max_step_reward() const { return max_step_reward_; }
   void set_max_step_reward(double r) { max_step_reward_ = r; }
+  // Removes from the fall bodies those `clip` puts on the ground (allow_clip_contacts); the env
+  // does this for its reference, the imitation env for its clips.
+  void allow_contacts_of(const Clip& clip);
+  // A body rests on the ground at a frame of a clip when it is within kClipContactGap of it (mocap
+  // bodies hover a little: the face-up get-up's pelvis lies 4.5 cm up) with its joint below
+  // kClipContactJointHeight of the standing root height (a run's shin comes as near beside its
+  // planted foot, the knee high); in the clip, when it does so for kClipContactSeconds in all.
+  static constexpr double kClipContactGap = 0.05;          // m
+  static constexpr double kClipContactJointHeight = 0.25;  // of rest_root_height()
+  static constexpr double kClipContactSeconds = 0.1;
+  // The bodies whose ground contact is a fall, by joint name.
+  std::vector<std::string> fall_bodies() const;
   // Replaces the pushes (e.g. new random pushes per episode); throws Error on an unknown link.
   void set_pushes(std::vector<PushSpec> pushes);
 

@@ -4,11 +4,12 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
-#include "env/humanoid_forward.hpp"
+#include "env/imitation_env.hpp"
 #include "env/planar_walker.hpp"
 #include "motion/clip_io.hpp"
 #include "env/reacher_arm.hpp"
 #include "env/tracking.hpp"
+#include "sim/terrain.hpp"
 
 namespace mimic {
 
@@ -76,29 +77,72 @@ ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader,
   return p;
 }
 
-// What a joint's torque limit bounds (sim/world.hpp PdLimit): `spring`, the default the committed
-// models were trained under, or `total`, DeepMimic's rule.
-PdLimit read_pd_limit(ConfigSection& s) { return s.choice("pd_limit", "spring", {"spring", "total"}) == "total" ? PdLimit::Total : PdLimit::Spring; }
+// The terrain (sim/terrain.hpp): terrain: {kind: flat | slope | gaps | stairs | heightfield, ...}.
+TerrainSpec read_terrain(ConfigSection& parent, const YamlReader& reader) {
+  TerrainSpec t;
+  ConfigSection s(reader, parent.child("terrain"), "env.terrain");
+  t.kind = terrain_kind_from_string(s.choice("kind", "flat", {"flat", "slope", "gaps", "stairs", "heightfield"}));
+  t.start_zone = s.number("start_zone", t.start_zone, 0, 1e3);
+  t.behind = s.number("behind", t.behind, 0, 1e4);
+  t.ahead = s.number("ahead", t.ahead, 0, 1e4);
+  t.width = s.number("width", t.width, 0, 1e4);
+  t.resolution = s.number("resolution", t.resolution, 1e-3, 10);
+  t.slope_deg = s.number("slope_deg", t.slope_deg, -60, 60);
+  t.slope_length = s.number("slope_length", t.slope_length, 0, 1e4);
+  t.slope_segments = static_cast<int>(s.integer("slope_segments", t.slope_segments, 1, 10'000));
+  t.gap_width = s.number("gap_width", t.gap_width, 0, 100);
+  t.gap_spacing = s.number("gap_spacing", t.gap_spacing, 0, 1e3);
+  t.gap_depth = s.number("gap_depth", t.gap_depth, 0, 1e3);
+  t.gap_count = static_cast<int>(s.integer("gap_count", t.gap_count, 0, 10'000));
+  t.step_height = s.number("step_height", t.step_height, 0, 10);
+  t.step_depth = s.number("step_depth", t.step_depth, 0, 100);
+  t.landing = s.number("landing", t.landing, 0, 1e3);
+  t.step_count = static_cast<int>(s.integer("step_count", t.step_count, 0, 10'000));
+  t.roughness = s.number("roughness", t.roughness, 0, 100);
+  t.feature = s.number("feature", t.feature, 1e-3, 1e3);
+  t.seed = s.seed("seed", t.seed);
+  s.finish();
+  return t;
+}
 
-EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
-  HumanoidForwardConfig c;
-  const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
-  // One clip, or a list of them for starts from all (seed 004's integrated learning).
-  const std::vector<std::string> clip_files = s.child("clip").IsSequence()
-                                                  ? s.texts("clip", {})
-                                                  : std::vector<std::string>{s.text("clip", "deepmimic/motions/humanoid3d_walk.txt")};
-  if (clip_files.empty()) reader.fail(s.child("clip"), "'env.clip': an empty list (give one clip or several)");
-  c.init = s.choice("init", "mocap", {"mocap", "fixed"}) == "mocap" ? HumanoidForwardConfig::Init::Mocap : HumanoidForwardConfig::Init::FixedPose;
+// Pushes (sim/perturbation.hpp): pushes: [{link: chest, force: [0, 300, 0], start: 2, duration: 0.1}, ...],
+// times from each episode's start, forces in newtons in the world frame.
+std::vector<PushSpec> read_pushes(ConfigSection& parent, const YamlReader& reader) {
+  const YAML::Node list = parent.child("pushes");
+  std::vector<PushSpec> pushes;
+  if (!list.IsDefined() || list.IsNull()) return pushes;
+  if (!list.IsSequence()) reader.fail(list, "'env.pushes': expected a list of {link, force, start, duration}");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string where = "env.pushes[" + std::to_string(i) + "]";
+    if (!list[i].IsMap()) reader.fail(list[i], "'" + where + "': expected a mapping {link, force, start, duration}");
+    ConfigSection s(reader, list[i], where);
+    PushSpec p;
+    p.link = s.text("link", "");
+    if (p.link.empty()) reader.fail(list[i], "'" + where + "': missing 'link' (the body to push)");
+    if (!s.has("force")) reader.fail(list[i], "'" + where + "': missing 'force' ([x, y, z] newtons, world frame)");
+    p.force = reader.vec<3>(s.child("force"), s.name("force"));
+    p.start = s.number("start", p.start, 0, 1e6);
+    p.duration = s.number("duration", p.duration, 0, 1e6);
+    s.finish();
+    pushes.push_back(p);
+  }
+  return pushes;
+}
+
+// The character environment's keys, shared by both humanoid environments, read into the struct
+// that uses them (CharacterEnvConfig); `c` holds each environment's defaults.
+void read_character_env(ConfigSection& s, const YamlReader& reader, CharacterEnvConfig& c) {
+  c.observations.names = s.texts("observations", c.observations.names);
+  c.observations.link_history = static_cast<int>(s.integer("link_history", c.observations.link_history, 1, 64));
+  c.observations.height_map_size = static_cast<int>(s.integer("height_map_size", c.observations.height_map_size, 1, 101));
+  c.observations.height_map_spacing = s.number("height_map_spacing", c.observations.height_map_spacing, 1e-3, 10);
+  c.observations.height_map_ahead = s.number("height_map_ahead", c.observations.height_map_ahead, -100, 100);
   c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
-  c.alive_bonus = s.number("alive_bonus", c.alive_bonus, 0, 1e6);
-  c.forward_weight = s.number("forward_weight", c.forward_weight, 0, 1e6);
-  c.target_speed = s.number("target_speed", c.target_speed, 0, 100);
-  c.lateral_weight = s.number("lateral_weight", c.lateral_weight, 0, 1e6);
-  c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
-  c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
   c.fall_links = s.texts("fall_links", c.fall_links);
+  c.allow_clip_contacts = s.boolean("allow_clip_contacts", c.allow_clip_contacts);
+  c.early_termination = s.boolean("early_termination", c.early_termination);
+  c.fall_height = s.number("fall_height", c.fall_height, 0, 1);
   c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
-  c.pd_limit = read_pd_limit(s);
   c.lift_starts = s.boolean("lift_starts", c.lift_starts);
   c.start_momentum.window = s.number("start_momentum_window", c.start_momentum.window, 0, 10);
   c.start_momentum.statistic = s.choice("start_momentum_statistic", "mean", {"mean", "median"}) == "median"
@@ -109,40 +153,59 @@ EnvFactory humanoid_forward(ConfigSection& s, const YamlReader& reader) {
     if (s.child(key).IsDefined() && !s.child("start_momentum_window").IsDefined())
       reader.fail(s.child(key), std::string("'env.") + key +
                                     "' shapes start_momentum_window's smoothing: it needs a start_momentum_window (0 turns it off)");
-  if (c.max_drift > 0 && c.init != HumanoidForwardConfig::Init::Mocap)
-    reader.fail(s.child("max_drift"), "'env.max_drift' measures against the clip a start was drawn from: it needs init: mocap");
-  c.observations.names = s.texts("observations", c.observations.names);
-  c.observations.link_history = static_cast<int>(s.integer("link_history", c.observations.link_history, 1, 64));
-  c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? HumanoidForwardConfig::Goal::Heading : HumanoidForwardConfig::Goal::None;
+  c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
+  c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);
+  // What a joint's torque limit bounds (sim/world.hpp PdLimit): `spring`, the default the committed
+  // models were trained under, or `total`, DeepMimic's rule.
+  c.sim.pd_limit = s.choice("pd_limit", "spring", {"spring", "total"}) == "total" ? PdLimit::Total : PdLimit::Spring;
+  c.terrain = read_terrain(s, reader);
+  c.pushes = read_pushes(s, reader);
+  c.projectiles = read_projectiles(s, reader, "env.projectiles");
+}
+
+// The character and its clips, looked up as data_path says.
+struct CharacterData {
+  std::filesystem::path path;
+  std::shared_ptr<const CharacterModel> model;
+};
+CharacterData read_character(ConfigSection& s, const YamlReader& reader) {
+  const std::filesystem::path path = data_path(s.text("character", "deepmimic/characters/humanoid3d.txt"), "character", reader);
+  return {path, load_character(path)};
+}
+
+EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
+  ImitationEnvConfig c;
+  const CharacterData ch = read_character(s, reader);
+  // One clip, or a list of them for starts from all (seed 004's integrated learning).
+  const std::vector<std::string> clip_files = s.child("clip").IsSequence()
+                                                  ? s.texts("clip", {})
+                                                  : std::vector<std::string>{s.text("clip", "deepmimic/motions/humanoid3d_walk.txt")};
+  if (clip_files.empty()) reader.fail(s.child("clip"), "'env.clip': an empty list (give one clip or several)");
+  c.init = s.choice("init", "mocap", {"mocap", "fixed"}) == "mocap" ? ImitationEnvConfig::Init::Mocap : ImitationEnvConfig::Init::FixedPose;
+  read_character_env(s, reader, c.env);
+  c.alive_bonus = s.number("alive_bonus", c.alive_bonus, 0, 1e6);
+  c.forward_weight = s.number("forward_weight", c.forward_weight, 0, 1e6);
+  c.target_speed = s.number("target_speed", c.target_speed, 0, 100);
+  c.lateral_weight = s.number("lateral_weight", c.lateral_weight, 0, 1e6);
+  c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
+  c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
+  c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? ImitationEnvConfig::Goal::Heading : ImitationEnvConfig::Goal::None;
   c.goal_speed = s.number("goal_speed", c.goal_speed, 0, 100);
   c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);
   c.goal_weight = s.number("goal_weight", c.goal_weight, 0, 1e6);
-  c.projectiles = read_projectiles(s, reader, "env.projectiles");
-  const std::filesystem::path ch_path = data_path(character, "character", reader);
-  auto ch = load_character(ch_path);
   std::vector<std::shared_ptr<const Clip>> clips;
-  for (const std::string& f : clip_files) clips.push_back(load_clip(data_path(f, "clip", reader), ch_path));
-  return [ch, clips, c] { return std::unique_ptr<Env>(make_humanoid_forward_env(*ch, clips, c)); };
+  for (const std::string& f : clip_files) clips.push_back(load_clip(data_path(f, "clip", reader), ch.path));
+  return [model = ch.model, clips, c] { return std::unique_ptr<Env>(make_imitation_env(*model, clips, c)); };
 }
 
 EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   TrackingConfig c;
-  const std::string character = s.text("character", "deepmimic/characters/humanoid3d.txt");
+  const CharacterData ch = read_character(s, reader);
   const std::string clip_file = s.text("clip", "deepmimic/motions/humanoid3d_walk.txt");
   c.init = s.choice("init", "reference", {"reference", "fixed"}) == "reference" ? TrackingConfig::Init::Reference
                                                                                  : TrackingConfig::Init::Fixed;
-  c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
-  c.early_termination = s.boolean("early_termination", c.early_termination);
-  c.fall_links = s.texts("fall_links", c.fall_links);
-  c.fall_height = s.number("fall_height", c.fall_height, 0, 1);
-  c.max_drift = s.number("max_drift", c.max_drift, 0, 1e6);
+  read_character_env(s, reader, c.env);
   c.com_term = s.choice("com_term", "position", {"position", "velocity"}) == "velocity" ? ComTerm::Velocity : ComTerm::Position;
-  c.observations.names = s.texts("observations", c.observations.names);
-  c.sim.physics_hz = s.number("physics_hz", c.sim.physics_hz, 1, 100'000);
-  c.sim.control_hz = s.number("control_hz", c.sim.control_hz, 1, 10'000);
-  c.sim.pd_limit = read_pd_limit(s);
-  c.lift_starts = s.boolean("lift_starts", c.lift_starts);
-  c.projectiles = read_projectiles(s, reader, "env.projectiles");
   ConfigSection w(reader, s.child("weights"), "env.weights");
   c.weights = {w.number("pose", c.weights.pose, 0, 1e6), w.number("velocity", c.weights.velocity, 0, 1e6),
                w.number("end_effector", c.weights.end_effector, 0, 1e6), w.number("com", c.weights.com, 0, 1e6)};
@@ -151,26 +214,25 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   c.scales = {k.number("pose", c.scales.pose, 0, 1e6), k.number("velocity", c.scales.velocity, 0, 1e6),
               k.number("end_effector", c.scales.end_effector, 0, 1e6), k.number("com", c.scales.com, 0, 1e6)};
   k.finish();
-  const std::filesystem::path ch_path = data_path(character, "character", reader);
-  auto ch = load_character(ch_path);
-  auto clip = load_clip(data_path(clip_file, "clip", reader), ch_path);
-  return [ch, clip, c] { return std::unique_ptr<Env>(make_tracking_env(*ch, clip, c)); };
+  auto clip = load_clip(data_path(clip_file, "clip", reader), ch.path);
+  return [model = ch.model, clip, c] { return std::unique_ptr<Env>(make_tracking_env(*model, clip, c)); };
 }
 
 }  // namespace
 
-std::string env_names() { return "planar_walker, reacher, humanoid_forward, tracking"; }
+std::string env_names() { return "imitation, tracking, planar_walker, reacher"; }
 
 EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   ConfigSection s(reader, env, "env");
-  const std::string name = s.choice("name", "", {"planar_walker", "reacher", "humanoid_forward", "tracking"});
+  // humanoid_forward: the imitation environment's name in models saved before it had one.
+  const std::string name = s.choice("name", "", {"imitation", "tracking", "planar_walker", "reacher", "humanoid_forward"});
   if (name.empty()) reader.fail(env, "'env': missing 'name' (one of " + env_names() + ")");
   EnvFactory f;
   try {
     f = name == "planar_walker" ? planar_walker(s)
         : name == "reacher"     ? reacher(s)
         : name == "tracking"    ? tracking(s, reader)
-                                : humanoid_forward(s, reader);
+                                : imitation(s, reader);
   } catch (const ParseError&) {
     throw;
   } catch (const Error& e) {
@@ -178,7 +240,7 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   }
   // Any environment may carry seed 000's behaviour context: context: {count: K, period: steps,
   // starts: any | by_context}; by_context starts each episode from its context's clip (clip i of
-  // a humanoid_forward list for context i).
+  // an imitation env's list for context i).
   const YAML::Node context = s.child("context");
   if (context.IsDefined()) {
     ConfigSection c(reader, context, "env.context");
@@ -193,6 +255,9 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   s.finish();
   try {
     (void)f();
+  } catch (const KeyError& e) {  // at the key's line where the config sets it
+    const YAML::Node key = s.child(e.key().c_str());
+    reader.fail(key.IsDefined() ? key : env, "'env." + e.key() + "' (" + name + "): " + e.message());
   } catch (const Error& e) {
     reader.fail(env, "'env' (" + name + "): " + e.what());
   }

@@ -102,10 +102,9 @@ void check(const TrackingConfig& cfg, const CharacterModel& ch, const Clip* clip
 // Appends the four weighted terms after each step, against the reference at the step's time.
 class TrackingEnv final : public CharacterEnv {
  public:
-  TrackingEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg, std::shared_ptr<const Clip> clip,
-              const TrackingConfig& cfg)
-      : CharacterEnv(ch, env_cfg, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales),
-        com_term_(cfg.com_term), dt_(1.0 / env_cfg.sim.control_hz) {
+  TrackingEnv(const CharacterModel& ch, std::shared_ptr<const Clip> clip, const TrackingConfig& cfg)
+      : CharacterEnv(ch, cfg.env, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales),
+        com_term_(cfg.com_term), dt_(1.0 / cfg.env.sim.control_hz) {
     set_max_step_reward(weights_.pose + weights_.velocity + weights_.end_effector + weights_.com);
   }
 
@@ -142,17 +141,7 @@ class TrackingEnv final : public CharacterEnv {
 std::unique_ptr<CharacterEnv> make_tracking_env(const CharacterModel& ch, std::shared_ptr<const Clip> clip,
                                                 const TrackingConfig& cfg) {
   check(cfg, ch, clip.get());
-  CharacterEnvConfig env_cfg;
-  env_cfg.sim = cfg.sim;
-  env_cfg.observations = cfg.observations;
-  env_cfg.max_seconds = cfg.max_seconds;
-  env_cfg.early_termination = cfg.early_termination;
-  env_cfg.fall_links = cfg.fall_links;
-  env_cfg.fall_height = cfg.fall_height;
-  env_cfg.max_drift = cfg.max_drift;
-  env_cfg.lift_starts = cfg.lift_starts;
-  env_cfg.projectiles = cfg.projectiles;
-  auto env = std::make_unique<TrackingEnv>(ch, env_cfg, clip, cfg);
+  auto env = std::make_unique<TrackingEnv>(ch, clip, cfg);
   if (cfg.init == TrackingConfig::Init::Reference) {
     env->set_init_sampler([clip](std::mt19937_64& rng) {
       std::uniform_real_distribution<double> when(0.0, clip->duration());

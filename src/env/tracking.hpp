@@ -73,15 +73,18 @@ struct TrackingConfig {
   TrackingWeights weights;
   TrackingScales scales;
   ComTerm com_term = ComTerm::Position;  // Velocity: set scales.com to about 1
-  double max_seconds = 20.0;       // cyclic clips; a non-cyclic clip ends at its end
-  bool early_termination = true;   // off for contact-rich clips (roll, get-up)
-  double fall_height = 0.5;        // a fall also below this fraction of the reference's root height (0: off)
-  double max_drift = 0.0;          // > 0: metres from the reference's root that end an episode (Drift)
-  bool lift_starts = false;        // raise starts out of the floor (CharacterEnvConfig)
-  std::vector<std::string> fall_links;  // empty: the character's own choice
-  ObservationConfig observations{.names = {"full_state", "phase"}};
-  SimConfig sim;
-  ProjectileSpec projectiles;  // seed 004's robustness test when enabled
+  // The character environment: the policy sees its state and the clip's phase; episodes last 20 s
+  // on a cyclic clip (a non-cyclic clip ends at its end) and end early on a fall or with the root
+  // below half the reference's height; early_termination off for contact-rich clips (roll, get-up).
+  CharacterEnvConfig env = defaults();
+
+  static CharacterEnvConfig defaults() {
+    CharacterEnvConfig c;
+    c.observations.names = {"full_state", "phase"};
+    c.fall_height = 0.5;
+    c.max_seconds = 20.0;
+    return c;
+  }
 };
 
 // The environment; reward terms are named pose, velocity, end_effector and com (weighted).

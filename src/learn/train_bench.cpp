@@ -46,7 +46,7 @@ std::string train_benchmark_config(const TrainBenchOptions& o, int threads) {
       "seed: 1\n"
       "iterations: {}\n"
       "tensorboard: false\n"
-      "env: {{name: humanoid_forward, init: mocap}}\n"
+      "env: {{name: imitation, init: mocap}}\n"
       "collect: {{envs: {}, threads: {}, samples: {}}}\n"
       "policy: {{hidden: [1024, 512], activation: relu, init: truncated_normal, init_std: 0.05,\n"
       "          output_init: truncated_normal, output_scale: 0.05, log_std: -1.0}}\n"

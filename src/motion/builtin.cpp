@@ -72,4 +72,40 @@ Clip builtin_jumping_jack() {
   return clip;
 }
 
+Clip builtin_squat() {
+  Clip keys;
+  keys.name = "squat";
+  keys.skeleton = builtin_humanoid();
+  keys.loop = LoopMode::Wrap;
+  keys.fps = 1.0;  // keyframes every second: standing, squatting with the arms forward, standing
+  const Skeleton& sk = keys.skeleton;
+  // `hip` flexes the thighs forward, `knee` bends the knees, the ankles keep the feet flat; the
+  // chest leans forward by `lean` and the arms rise forward by `arms`. Flexion is about -y for
+  // the hips, shoulders and chest (the limbs hang along -z) and +y for the knees and elbows.
+  auto pose = [&](double hip, double knee, double lean, double arms) {
+    Pose p = rest_pose(sk, Vec3::Zero());
+    p.rot[static_cast<std::size_t>(sk.find("chest"))] = axis_rotation('y', lean);
+    for (const char* side : {"right", "left"}) {
+      const std::string n(side);
+      p.rot[static_cast<std::size_t>(sk.find(n + "_hip"))] = axis_rotation('y', -hip);
+      p.rot[static_cast<std::size_t>(sk.find(n + "_knee"))] = axis_rotation('y', knee);
+      p.rot[static_cast<std::size_t>(sk.find(n + "_ankle"))] = axis_rotation('y', hip - knee);
+      p.rot[static_cast<std::size_t>(sk.find(n + "_shoulder"))] = axis_rotation('y', -arms);
+      p.rot[static_cast<std::size_t>(sk.find(n + "_elbow"))] = axis_rotation('y', -0.1);
+    }
+    return p;
+  };
+  keys.frames = {pose(0.05, 0.1, 0.0, 0.2), pose(0.6, 1.0, 0.25, 1.3), pose(0.05, 0.1, 0.0, 0.2)};
+  Clip clip = resample(keys, 30.0);
+  // Every frame with its soles on the floor: the feet stay planted while the hips go down.
+  for (Pose& p : clip.frames) {
+    Clip one;
+    one.skeleton = clip.skeleton;
+    one.frames = {p};
+    one.fps = clip.fps;
+    p.root_pos.z() -= clip_min_height(one);
+  }
+  return clip;
+}
+
 }  // namespace mimic

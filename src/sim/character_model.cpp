@@ -98,7 +98,18 @@ CharacterModel CharacterModel::from_skeleton(const Skeleton& sk, const std::stri
     BodyDef b;
     b.name = sk.joints[j].name;
     b.color = Eigen::Vector4d(0.47, 0.55, 0.69, 1.0);
-    if (tip.norm() < 0.01) {
+    const bool leaf_foot = children[j].empty() && &part == &kParts[2] && tip.norm() >= 0.01;
+    if (leaf_foot) {
+      // A foot with no toe joint: a sole box under the bone's tip (seed 000's and DeepMimic's
+      // humanoids stand on boxes; a capsule's rounded end is a point contact nothing balances on).
+      // From 1.25 radii behind the joint to 2.75 radii ahead of the tip along +x (mimic's
+      // forward), 2.25 radii wide, 1.25 radii thick, its bottom at the tip's height.
+      const double heel = -1.25 * r, toe = tip.x() + 2.75 * r, thick = 1.25 * r;
+      b.shape = "box";
+      b.pos = Vec3((heel + toe) / 2, tip.y(), tip.z() + thick / 2);
+      b.size = Vec3(toe - heel, 2.25 * r, thick);
+      volumes.push_back(b.size.x() * b.size.y() * b.size.z());
+    } else if (tip.norm() < 0.01) {
       b.shape = "sphere";
       b.size = Vec3::Constant(2 * r);
       volumes.push_back(4.0 / 3.0 * kPi * r * r * r);

@@ -19,7 +19,8 @@ struct CharacterModel {
   static CharacterModel from_deepmimic(const std::filesystem::path& character, const std::filesystem::path& controller = {});
   // A body generated for any skeleton (BVH, ASF, .mclip), as seed 000 built its CMU humanoid
   // from segment lengths: per joint a capsule along its bone (towards the farthest child or its
-  // site; a sphere where there is none) with a radius by body part, masses in proportion to
+  // site; a sphere where there is none; a foot without a toe joint stands on a sole box under its
+  // site) with a radius by body part, masses in proportion to
   // volume summing to `total_mass`, and servo gains and torque limits by body part (strong legs
   // and torso, weak hands and toes), scaled with the mass.
   static CharacterModel from_skeleton(const Skeleton& sk, const std::string& name, double total_mass = 70.0);

@@ -285,6 +285,25 @@ std::vector<bool> World::ground_contacts() const {
   return touching;
 }
 
+std::vector<bool> World::ground_contacts_of(const Pose& pose, double gap) const {
+  if (pose.rot.size() != ch_.skeleton.joints.size()) throw Error("ground_contacts_of: pose has the wrong number of joints");
+  if (!scratch_) scratch_ = mj_makeData(m_);
+  mjData* s = scratch_;
+  mj_resetData(m_, s);
+  Pose lowered = pose;
+  lowered.root_pos.z() -= gap;  // within `gap` of the floor: into it
+  write_qpos(ch_.skeleton, qpos_, lowered, s);
+  mj_kinematics(m_, s);
+  mj_collision(m_, s);
+  std::vector<bool> touching(ch_.skeleton.joints.size(), false);
+  for (int c = 0; c < s->ncon; ++c) {
+    const int other = body_against_world(m_, s->contact[c]);
+    for (std::size_t j = 0; j < body_.size(); ++j)
+      if (other >= 0 && body_[j] == other) touching[j] = true;
+  }
+  return touching;
+}
+
 double World::ground_penetration() const {
   double depth = 0.0;
   for (int c = 0; c < d_->ncon; ++c) {

@@ -76,6 +76,9 @@ class World {
   Vec3 centre_of_mass() const;
   // Per joint: does its body touch the floor (or another non-character geom)?
   std::vector<bool> ground_contacts() const;
+  // Per joint: does its body come within `gap` metres of the floor (or another world-fixed geom)
+  // in `pose`? Read on scratch data: the world's state is untouched.
+  std::vector<bool> ground_contacts_of(const Pose& pose, double gap) const;
   // How far the character's bodies reach into the floor (or another world-fixed geom) in the
   // current state, metres; 0 when none does. Read from the contacts of the last mj_forward.
   double ground_penetration() const;

@@ -136,7 +136,7 @@ TEST(AdaptiveInit, WrapperRecordsEachEpisodesDiscountedReturn) {
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig tc;
-  tc.max_seconds = 0.5;
+  tc.env.max_seconds = 0.5;
   AdaptiveInitConfig cfg;
   cfg.components = 5;
   cfg.std_scale = 0.1;

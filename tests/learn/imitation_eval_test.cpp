@@ -101,7 +101,7 @@ TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig cfg;
-  cfg.max_seconds = 2.0;
+  cfg.env.max_seconds = 2.0;
   auto env = make_tracking_env(ch, walk, cfg);
   // A "policy" that sets the PD targets to the clip's pose one step ahead (it reads the time
   // from the env, not from its input), and one that holds the first frame's pose.
@@ -165,9 +165,9 @@ TEST(ImitationError, ACollapseWithoutATerminationCountsAsDownNotAsAFall) {
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   TrackingConfig cfg;
-  cfg.max_seconds = 3.0;
-  cfg.early_termination = false;
-  cfg.fall_height = 0;
+  cfg.env.max_seconds = 3.0;
+  cfg.env.early_termination = false;
+  cfg.env.fall_height = 0;
   auto env = make_tracking_env(ch, walk, cfg);
   CharacterEnv* e = env.get();
   const PolicyFunction follow = [&](const Eigen::VectorXd&) { return e->action_for(walk->sample(e->time() + 1.0 / 30)); };
@@ -175,7 +175,7 @@ TEST(ImitationError, ACollapseWithoutATerminationCountsAsDownNotAsAFall) {
   const PolicyFunction fold = [&](const Eigen::VectorXd&) { return fold_action; };
   const ImitationReport bad = measure_imitation(*env, fold, 1, 3);
   // Open-loop PD following stays up for about a second before it topples: a 0.6 s episode.
-  cfg.max_seconds = 0.6;
+  cfg.env.max_seconds = 0.6;
   env = make_tracking_env(ch, walk, cfg);
   e = env.get();
   const ImitationReport good = measure_imitation(*env, follow, 1, 3);
@@ -193,8 +193,8 @@ TEST(ImitationError, ADriftTerminationDoesNotEndATrialOrCountAsAFall) {
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
   auto measure = [&](double max_drift) {
     TrackingConfig cfg;
-    cfg.max_seconds = 2.0;
-    cfg.max_drift = max_drift;
+    cfg.env.max_seconds = 2.0;
+    cfg.env.max_drift = max_drift;
     auto env = make_tracking_env(ch, walk, cfg);
     const Eigen::VectorXd hold_action = env->action_for(walk->frames[0]);
     return measure_imitation(*env, [&](const Eigen::VectorXd&) { return hold_action; }, 1, 3);

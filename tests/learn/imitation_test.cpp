@@ -12,7 +12,7 @@
 #include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
-#include "env/humanoid_forward.hpp"
+#include "env/imitation_env.hpp"
 #include "learn/clip_demonstrations.hpp"
 #include "motion/clip_io.hpp"
 #include "motion/deepmimic.hpp"
@@ -287,9 +287,9 @@ TEST(ClipDemonstrations, ObserveTheClipEveryControlStepWithoutActions) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init_noise = 0.0;
-  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  auto env = make_imitation_env(ch, walk, cfg);
   const Demonstrations d = clip_demonstrations(*env, *walk, 2);
   const int per_pass = static_cast<int>(std::floor(walk->duration() * 30.0));  // 30 Hz control
   EXPECT_NEAR(d.size(), 2 * per_pass, 2);
@@ -323,9 +323,9 @@ TEST(ClipDemonstrations, ALinkHistoryHoldsTheClipsPreviousPoses) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
-  HumanoidForwardConfig cfg;
-  cfg.observations = ObservationConfig{.names = {"links"}, .link_history = 3};
-  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  ImitationEnvConfig cfg;
+  cfg.env.observations = ObservationConfig{.names = {"links"}, .link_history = 3};
+  auto env = make_imitation_env(ch, walk, cfg);
   const Demonstrations d = clip_demonstrations(*env, *walk);
   const int nj = ch.skeleton.num_joints();
   const double dt = 1.0 / 30;

@@ -49,9 +49,9 @@ TEST(TrackingLearning, ASwingingArmIsFollowedCloserAfterAFewIterations) {
   const auto clip = std::make_shared<const Clip>(swinging_arm());
   const auto ch = std::make_shared<const CharacterModel>(CharacterModel::from_skeleton(clip->skeleton, "arm_on_the_floor"));
   TrackingConfig tc;
-  tc.early_termination = false;  // it lies on the floor by design
-  tc.fall_height = 0.0;
-  tc.max_seconds = 2.0;
+  tc.env.early_termination = false;  // it lies on the floor by design
+  tc.env.fall_height = 0.0;
+  tc.env.max_seconds = 2.0;
   TrainOptions opts;
   opts.env_factory = [ch, clip, tc] { return std::unique_ptr<Env>(make_tracking_env(*ch, clip, tc)); };
   const int iterations = 40;

@@ -120,7 +120,7 @@ TEST(TrainConfig, EnvironmentSectionsAreCheckedByTheFactory) {
   EXPECT_NE(env_error("{name: planar_walker, max_step: 3}").find("unknown key 'env.max_step'"), std::string::npos);
   EXPECT_NE(env_error("{max_steps: 3}").find("missing 'name'"), std::string::npos);
   EXPECT_NE(env_error("{name: reacher, links: 4}").find("'env.links': 4 is outside [2, 3]"), std::string::npos);
-  EXPECT_NE(env_error("{name: humanoid_forward, character: /nonexistent/h.txt}").find("/nonexistent/h.txt not found"), std::string::npos);
+  EXPECT_NE(env_error("{name: imitation, character: /nonexistent/h.txt}").find("/nonexistent/h.txt not found"), std::string::npos);
   const EnvFactory f = make_env_factory(r.parse("{name: reacher, links: 3, observation: ee_to_target}", ""), r);
   const auto env = f();
   EXPECT_EQ(env->action_size(), 3);
@@ -209,7 +209,7 @@ TEST(ShippedConfigs, ParseAndBuildTheirEnvironments) {
     const TrainConfig c = load_train_config(entry.path());
     ++parsed;
     const std::string name = c.env["name"].as<std::string>();
-    if ((name == "humanoid_forward" || name == "tracking") && shared_data_dir().empty()) continue;
+    if ((name == "imitation" || name == "tracking") && shared_data_dir().empty()) continue;
     const auto env = make_env_factory(c.env, YamlReader(c.source))();
     EXPECT_GT(env->observation_size(), 0);
     EXPECT_GT(env->action_size(), 0);

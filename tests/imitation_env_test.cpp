@@ -1,6 +1,6 @@
-// Seed 000's "move forward" task: reward terms against hand-computed values, the two kinds of
-// episode start, and how episodes end.
-#include "env/humanoid_forward.hpp"
+// The imitation environment: seed 000's "move forward" task's reward terms against hand-computed
+// values, the two kinds of episode start, how episodes end, and the character keys of a config.
+#include "env/imitation_env.hpp"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -19,7 +19,7 @@ using namespace mimic;
 
 namespace {
 
-using Init = HumanoidForwardConfig::Init;
+using Init = ImitationEnvConfig::Init;
 
 // The clip turned by `yaw` about +Z and moved by `shift`: a start away from the track's.
 std::shared_ptr<const Clip> moved(const Clip& clip, double yaw, const Vec3& shift) {
@@ -65,16 +65,16 @@ std::string factory_error(const YamlReader& r, const std::string& env_yaml) {
 
 }  // namespace
 
-TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
+TEST(ImitationEnv, RewardTermsMatchHandComputedValues) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.alive_bonus = 2.0;
   cfg.forward_weight = 0.5;
   cfg.lateral_weight = 0.3;
   cfg.control_weight = 0.01;
-  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  auto env = make_imitation_env(ch, nullptr, cfg);
   const double dt = 1.0 / 30.0;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
 
@@ -106,7 +106,7 @@ TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
 
   // The target-speed variant: -w |v_x - target|.
   cfg.target_speed = 3.0;
-  auto target = make_humanoid_forward_env(ch, nullptr, cfg);
+  auto target = make_imitation_env(ch, nullptr, cfg);
   target->reset(flying(ch));
   EXPECT_NEAR(term(target->step(zero), "forward"), -0.5 * std::abs(2.0 - 3.0), 1e-9);
 }
@@ -114,23 +114,23 @@ TEST(HumanoidForward, RewardTermsMatchHandComputedValues) {
 namespace {
 
 // Standing starts with a target heading.
-HumanoidForwardConfig heading_goal() {
-  HumanoidForwardConfig cfg;
+ImitationEnvConfig heading_goal() {
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
-  cfg.goal = HumanoidForwardConfig::Goal::Heading;
+  cfg.goal = ImitationEnvConfig::Goal::Heading;
   return cfg;
 }
 
 }  // namespace
 
-TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
+TEST(ImitationEnv, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg = heading_goal();
+  ImitationEnvConfig cfg = heading_goal();
   cfg.goal_speed = 1.0;
   cfg.goal_weight = 2.0;
   cfg.control_weight = 0.0;
-  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  auto env = make_imitation_env(ch, nullptr, cfg);
   const auto layout = env->observation_layout();
   ASSERT_EQ(layout.back().name, "goal");
   ASSERT_EQ(layout.back().size, 2);
@@ -155,12 +155,12 @@ TEST(HumanoidForward, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
   EXPECT_THROW(env->add_observation_part("empty", 0, nothing), Error);
 }
 
-TEST(HumanoidForward, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
+TEST(ImitationEnv, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg = heading_goal();
+  ImitationEnvConfig cfg = heading_goal();
   cfg.goal_period = 0.5;  // 15 control steps
-  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  auto env = make_imitation_env(ch, nullptr, cfg);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
   std::mt19937_64 rng(4);
   env->reset(rng);
@@ -185,19 +185,19 @@ TEST(HumanoidForward, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
   env->reset(again);
   EXPECT_EQ(goal_heading(*env), first);
   // Only this env has one; periods must be positive.
-  HumanoidForwardConfig plain_cfg;
+  ImitationEnvConfig plain_cfg;
   plain_cfg.init = Init::FixedPose;
-  auto plain = make_humanoid_forward_env(ch, nullptr, plain_cfg);
+  auto plain = make_imitation_env(ch, nullptr, plain_cfg);
   EXPECT_THROW(goal_heading(*plain), Error);
   cfg.goal_period = 0.0;
-  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+  EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
 }
 
-TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
+TEST(ImitationEnv, BuildsAProprioceptiveEnvWithoutAReference) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   auto env =
-      make_humanoid_forward_env(ch, test::humanoid3d_motion(ch, "humanoid3d_kick.txt"), HumanoidForwardConfig{});
+      make_imitation_env(ch, test::humanoid3d_motion(ch, "humanoid3d_kick.txt"), ImitationEnvConfig{});
   EXPECT_EQ(env->reference(), nullptr);  // a non-cyclic clip cannot end episodes (no ClipEnd)
   EXPECT_EQ(env->action_size(), 28);
   ASSERT_EQ(env->observation_layout().size(), 2u);
@@ -205,23 +205,23 @@ TEST(HumanoidForward, BuildsAProprioceptiveEnvWithoutAReference) {
   EXPECT_EQ(env->observation_layout()[1].name, "egocentric");
   EXPECT_EQ(env->config().max_seconds, 10.0);
 
-  HumanoidForwardConfig cfg;
-  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);  // Mocap needs a clip
+  ImitationEnvConfig cfg;
+  EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);  // Mocap needs a clip
   cfg.init = Init::FixedPose;
-  EXPECT_NO_THROW(make_humanoid_forward_env(ch, nullptr, cfg));
+  EXPECT_NO_THROW(make_imitation_env(ch, nullptr, cfg));
   cfg.lateral_weight = -0.1;
-  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+  EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
   cfg.lateral_weight = 0.1;
   cfg.init_noise = std::nan("");
-  EXPECT_THROW(make_humanoid_forward_env(ch, nullptr, cfg), Error);
+  EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
 }
 
 // mimic eval --robustness rebuilds a run's env with projectiles: a GAIL or ICCGAN run on this
 // task must accept them.
-TEST(HumanoidForward, LaunchesProjectilesWhenTheConfigAsks) {
+TEST(ImitationEnv, LaunchesProjectilesWhenTheConfigAsks) {
   MIMIC_NEED_HUMANOID();
   const YamlReader reader("test.yaml");
-  const EnvFactory f = make_env_factory(reader.parse("{name: humanoid_forward, init: fixed, projectiles: {enabled: true, mass: 5}}", "bad"), reader);
+  const EnvFactory f = make_env_factory(reader.parse("{name: imitation, init: fixed, projectiles: {enabled: true, mass: 5}}", "bad"), reader);
   auto env = f();
   auto* character = dynamic_cast<CharacterEnv*>(env.get());
   ASSERT_NE(character, nullptr);
@@ -232,7 +232,7 @@ TEST(HumanoidForward, LaunchesProjectilesWhenTheConfigAsks) {
   EXPECT_EQ(character->projectiles()->stats().launched, 3);  // one per control step
 }
 
-TEST(HumanoidForward, PlacingAtTheTrackStartKeepsTheMotion) {
+TEST(ImitationEnv, PlacingAtTheTrackStartKeepsTheMotion) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
@@ -253,12 +253,12 @@ TEST(HumanoidForward, PlacingAtTheTrackStartKeepsTheMotion) {
   EXPECT_GT(a.velocity.root_lin.x(), 0.5);  // walking forward, i.e. along +X
 }
 
-TEST(HumanoidForward, MocapStartsDifferAndFaceAlongTheTrack) {
+TEST(ImitationEnv, MocapStartsDifferAndFaceAlongTheTrack) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   // A clip facing elsewhere and away from the origin: starts must still be at the track's start.
   const auto walk = moved(*test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
-  auto env = make_humanoid_forward_env(ch, walk, HumanoidForwardConfig{});
+  auto env = make_imitation_env(ch, walk, ImitationEnvConfig{});
   std::vector<Pose> starts;
   for (const std::uint64_t seed : {1u, 2u, 3u}) {
     std::mt19937_64 rng(seed);
@@ -305,15 +305,15 @@ double elbow_angle(const CharacterEnv& env) {
 
 }  // namespace
 
-TEST(HumanoidForward, StartsFromSeveralClipsInProportionToTheirDurations) {
+TEST(ImitationEnv, StartsFromSeveralClipsInProportionToTheirDurations) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   ASSERT_GE(ch.skeleton.find("right_elbow"), 0);
   // Two held poses told apart by the right elbow: 1 s at 0.3 rad, 3 s at 1.2 rad.
   auto held = [&](double angle, double seconds) { return held_elbow(ch, angle, seconds); };
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init_noise = 0.0;
-  auto env = make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), held(1.2, 3.0)}, cfg);
+  auto env = make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), held(1.2, 3.0)}, cfg);
   EXPECT_EQ(env->start_groups(), 2);
   std::mt19937_64 rng(5);
   int from_long = 0, from_short = 0;
@@ -327,21 +327,21 @@ TEST(HumanoidForward, StartsFromSeveralClipsInProportionToTheirDurations) {
   EXPECT_EQ(from_long + from_short, starts);
   EXPECT_NEAR(from_long / double(starts), 0.75, 0.06);  // 3 s of 4; binomial sd 0.022
   // Every clip must fit; an empty collection cannot start Mocap episodes.
-  EXPECT_THROW(make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{}, cfg), Error);
+  EXPECT_THROW(make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{}, cfg), Error);
   Clip other = *held(0.3, 1.0);
   other.skeleton.joints.pop_back();
   for (Pose& p : other.frames) p.rot.pop_back();
-  EXPECT_THROW(make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), std::make_shared<const Clip>(other)}, cfg),
+  EXPECT_THROW(make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), std::make_shared<const Clip>(other)}, cfg),
                Error);
 }
 
 // A chosen start group (a clip of the list) restricts the starts to that clip until chosen again.
-TEST(HumanoidForward, AChosenStartGroupStartsFromThatClipAlone) {
+TEST(ImitationEnv, AChosenStartGroupStartsFromThatClipAlone) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init_noise = 0.0;
-  auto env = make_humanoid_forward_env(ch, std::vector<std::shared_ptr<const Clip>>{held_elbow(ch, 0.3, 1.0), held_elbow(ch, 1.2, 3.0)}, cfg);
+  auto env = make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{held_elbow(ch, 0.3, 1.0), held_elbow(ch, 1.2, 3.0)}, cfg);
   std::mt19937_64 rng(3);
   env->choose_start_group(0);  // the short clip, a quarter of the starts when drawn from both
   for (int i = 0; i < 40; ++i) {
@@ -362,13 +362,13 @@ TEST(HumanoidForward, AChosenStartGroupStartsFromThatClipAlone) {
 
 // A behaviour context with starts: by_context starts each episode from its context's clip, also
 // when the context is held; the config refuses it where the clips do not match the contexts.
-TEST(HumanoidForward, ContextStartsComeFromTheContextsClip) {
+TEST(ImitationEnv, ContextStartsComeFromTheContextsClip) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init_noise = 0.0;
   auto clips = [&] { return std::vector<std::shared_ptr<const Clip>>{held_elbow(ch, 0.3, 1.0), held_elbow(ch, 1.2, 3.0)}; };
-  ContextEnv env(make_humanoid_forward_env(ch, clips(), cfg), 2, 0, true);
+  ContextEnv env(make_imitation_env(ch, clips(), cfg), 2, 0, true);
   const auto& character = dynamic_cast<const CharacterEnv&>(env.inner());
   std::mt19937_64 rng(11);
   int per_context[2] = {0, 0};
@@ -386,7 +386,7 @@ TEST(HumanoidForward, ContextStartsComeFromTheContextsClip) {
     EXPECT_NEAR(elbow_angle(character), 0.3, 1e-6) << "held start " << i;
   }
   // Without the option the starts ignore the context (in proportion to the clips' durations).
-  ContextEnv any(make_humanoid_forward_env(ch, clips(), cfg), 2, 0);
+  ContextEnv any(make_imitation_env(ch, clips(), cfg), 2, 0);
   int mismatched = 0;
   for (int i = 0; i < 100; ++i) {
     any.reset(rng);
@@ -395,35 +395,35 @@ TEST(HumanoidForward, ContextStartsComeFromTheContextsClip) {
   }
   EXPECT_GT(mismatched, 20);
   // One clip per context, on a character env.
-  EXPECT_THROW(ContextEnv(make_humanoid_forward_env(ch, clips(), cfg), 3, 0, true), Error);
+  EXPECT_THROW(ContextEnv(make_imitation_env(ch, clips(), cfg), 3, 0, true), Error);
   EXPECT_THROW(ContextEnv(std::make_unique<CharacterEnv>(ch, CharacterEnvConfig{}), 2, 0, true), Error);
 
   const YamlReader r("ctx.yaml");
   auto error = [&](const std::string& env_yaml) { return factory_error(r, env_yaml); };
-  EXPECT_EQ(error("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt], "
+  EXPECT_EQ(error("{name: imitation, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt], "
                   "context: {count: 2, period: 150, starts: by_context}}"),
             "no error");
-  EXPECT_NE(error("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, starts: by_context}}")
+  EXPECT_NE(error("{name: imitation, clip: deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, starts: by_context}}")
                 .find("one start clip per context: 2 contexts, 1 clips"),
             std::string::npos);
-  EXPECT_NE(error("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, starts: sometimes}}")
+  EXPECT_NE(error("{name: imitation, clip: deepmimic/motions/humanoid3d_walk.txt, context: {count: 2, starts: sometimes}}")
                 .find("starts"),
             std::string::npos);
 }
 
-TEST(HumanoidForward, TheConfigTakesOneClipOrAList) {
+TEST(ImitationEnv, TheConfigTakesOneClipOrAList) {
   MIMIC_NEED_HUMANOID();
   const YamlReader r("test.yaml");
   auto observation_size = [&](const std::string& env_yaml) {
     const EnvFactory f = make_env_factory(r.parse(env_yaml, ""), r);
     return f()->observation_size();
   };
-  EXPECT_EQ(observation_size("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt]}"),
-            observation_size("{name: humanoid_forward, clip: deepmimic/motions/humanoid3d_walk.txt}"));
+  EXPECT_EQ(observation_size("{name: imitation, clip: [deepmimic/motions/humanoid3d_walk.txt, deepmimic/motions/humanoid3d_run.txt]}"),
+            observation_size("{name: imitation, clip: deepmimic/motions/humanoid3d_walk.txt}"));
   auto error = [&](const std::string& env_yaml) { return factory_error(r, env_yaml); };
-  EXPECT_NE(error("{name: humanoid_forward, clip: []}").find("'env.clip': an empty list"), std::string::npos);
+  EXPECT_NE(error("{name: imitation, clip: []}").find("'env.clip': an empty list"), std::string::npos);
   // Every clip of the list is loaded: a missing second one is named.
-  EXPECT_NE(error("{name: humanoid_forward, clip: [deepmimic/motions/humanoid3d_walk.txt, /nonexistent/run.txt]}").find("/nonexistent/run.txt not found"),
+  EXPECT_NE(error("{name: imitation, clip: [deepmimic/motions/humanoid3d_walk.txt, /nonexistent/run.txt]}").find("/nonexistent/run.txt not found"),
             std::string::npos);
 }
 
@@ -434,14 +434,14 @@ Vec3 links_root(const Eigen::VectorXd& obs, int f, int joints) { return obs.segm
 
 }  // namespace
 
-TEST(HumanoidForward, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
+TEST(ImitationEnv, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const auto walk = moved(*test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init_noise = 0.0;
-  cfg.observations = ObservationConfig{.names = {"links"}, .link_history = 5};
-  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  cfg.env.observations = ObservationConfig{.names = {"links"}, .link_history = 5};
+  auto env = make_imitation_env(ch, walk, cfg);
   const int nj = ch.skeleton.num_joints();
   ASSERT_EQ(env->observation_size(), 5 * 7 * nj);
   // A start at a known time: the oldest frame is the clip's root 4 control steps earlier, seen
@@ -462,13 +462,13 @@ TEST(HumanoidForward, MocapStartsFillTheLinkHistoryWithTheClipsEarlierPoses) {
   }
 }
 
-TEST(HumanoidForward, FixedPoseStartsAreTheRestPoseUpToNoise) {
+TEST(ImitationEnv, FixedPoseStartsAreTheRestPoseUpToNoise) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
   cfg.init_noise = 0.02;
-  auto env = make_humanoid_forward_env(ch, test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), cfg);
+  auto env = make_imitation_env(ch, test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), cfg);
   const Pose rest = rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 1e-3));
   std::vector<Pose> starts;
   for (const std::uint64_t seed : {1u, 2u}) {
@@ -485,7 +485,7 @@ TEST(HumanoidForward, FixedPoseStartsAreTheRestPoseUpToNoise) {
   }
   EXPECT_GT(max_joint_difference(starts[0], starts[1]), 1e-4);  // the noise differs per draw
   cfg.init_noise = 0.0;
-  auto exact = make_humanoid_forward_env(ch, nullptr, cfg);
+  auto exact = make_imitation_env(ch, nullptr, cfg);
   std::mt19937_64 rng(5);
   exact->reset(rng);
   EXPECT_LT(max_joint_difference(exact->world().pose(), rest), 1e-12);
@@ -506,15 +506,15 @@ int run_zero_actions(CharacterEnv& env, StepResult& last) {
 
 }  // namespace
 
-TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
+TEST(ImitationEnv, EpisodesEndAtTheTimeLimit) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const auto kick = test::humanoid3d_motion(ch, "humanoid3d_kick.txt");  // non-cyclic, 1.53 s
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
-  cfg.max_seconds = 2.0;
+  cfg.env.max_seconds = 2.0;
   // Standing at rest with zero actions lasts, past the end of the clip, to the limit.
-  auto env = make_humanoid_forward_env(ch, kick, cfg);
+  auto env = make_imitation_env(ch, kick, cfg);
   std::mt19937_64 rng(1);
   env->reset(rng);
   StepResult r;
@@ -525,8 +525,8 @@ TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
   // Mocap starts count the limit from the episode's start, not from the clip time drawn (zero
   // actions topple a walking pose only after about 1 s).
   cfg.init = Init::Mocap;
-  cfg.max_seconds = 0.5;
-  auto mocap = make_humanoid_forward_env(ch, test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), cfg);
+  cfg.env.max_seconds = 0.5;
+  auto mocap = make_imitation_env(ch, test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), cfg);
   for (const std::uint64_t seed : {1u, 2u}) {
     std::mt19937_64 draw(seed);
     mocap->reset(draw);
@@ -537,7 +537,7 @@ TEST(HumanoidForward, EpisodesEndAtTheTimeLimit) {
 
 // Seed 004 §5.2: an episode started on a non-cyclic clip ends where the clip ends; a cyclic one
 // runs to the time limit.
-TEST(HumanoidForward, MocapStartsOnANonCyclicClipEndWithTheClip) {
+TEST(ImitationEnv, MocapStartsOnANonCyclicClipEndWithTheClip) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const int elbow = ch.skeleton.find("right_elbow");
@@ -553,10 +553,10 @@ TEST(HumanoidForward, MocapStartsOnANonCyclicClipEndWithTheClip) {
     clip.frames.push_back(p);
   }
   ASSERT_EQ(clip.loop, LoopMode::None);
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init_noise = 0.0;
-  cfg.max_seconds = 2.0;
-  auto env = make_humanoid_forward_env(ch, std::make_shared<const Clip>(clip), cfg);
+  cfg.env.max_seconds = 2.0;
+  auto env = make_imitation_env(ch, std::make_shared<const Clip>(clip), cfg);
   const double dt = 1.0 / 30;
   std::mt19937_64 rng(3);
   StepResult r;
@@ -572,7 +572,7 @@ TEST(HumanoidForward, MocapStartsOnANonCyclicClipEndWithTheClip) {
   }
   // The same clip looping: to the limit. A start set directly (evaluation's) has no clip end.
   clip.loop = LoopMode::Wrap;
-  auto cyclic = make_humanoid_forward_env(ch, std::make_shared<const Clip>(clip), cfg);
+  auto cyclic = make_imitation_env(ch, std::make_shared<const Clip>(clip), cfg);
   cyclic->reset(rng);
   EXPECT_EQ(run_zero_actions(*cyclic, r), 60);
   EXPECT_EQ(r.termination, Termination::TimeLimit);
@@ -581,13 +581,13 @@ TEST(HumanoidForward, MocapStartsOnANonCyclicClipEndWithTheClip) {
   EXPECT_EQ(r.termination, Termination::TimeLimit);
 }
 
-TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {
+TEST(ImitationEnv, FallingEndsTheEpisodeEarly) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
-  cfg.max_seconds = 3.0;
-  auto env = make_humanoid_forward_env(ch, nullptr, cfg);
+  cfg.env.max_seconds = 3.0;
+  auto env = make_imitation_env(ch, nullptr, cfg);
   // Standing but pitched 0.8 rad forward and held rigid by zero actions: it topples onto its face.
   InitState s{rest_pose(ch.skeleton, Vec3(0, 0, ch.rest_root_height() + 0.05)), PoseVelocity{},
               0.0, {}};
@@ -601,33 +601,33 @@ TEST(HumanoidForward, FallingEndsTheEpisodeEarly) {
   EXPECT_LT(env->elapsed(), 2.0);
 }
 
-TEST(HumanoidForward, FallLinksChooseWhichContactsEndTheEpisode) {
+TEST(ImitationEnv, FallLinksChooseWhichContactsEndTheEpisode) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
-  cfg.max_seconds = 1.0;
+  cfg.env.max_seconds = 1.0;
   StepResult r;
   std::mt19937_64 rng(1);
   // Standing at rest: DeepMimic's root, chest and neck never touch, the feet always do.
-  auto standing = make_humanoid_forward_env(ch, nullptr, cfg);
+  auto standing = make_imitation_env(ch, nullptr, cfg);
   standing->reset(rng);
   EXPECT_EQ(run_zero_actions(*standing, r), 30);
   EXPECT_EQ(r.termination, Termination::TimeLimit);
   // The config's key reaches the env: a foot as a fall body ends the first step.
   const YamlReader yaml("test.yaml");
-  const EnvFactory factory = make_env_factory(yaml.parse("{name: humanoid_forward, init: fixed, fall_links: [right_ankle]}", ""), yaml);
+  const EnvFactory factory = make_env_factory(yaml.parse("{name: imitation, init: fixed, fall_links: [right_ankle]}", ""), yaml);
   const std::unique_ptr<Env> on_feet = factory();
   on_feet->reset(rng);
   r = on_feet->step(Eigen::VectorXd::Zero(on_feet->action_size()));
   EXPECT_EQ(r.termination, Termination::Fall);
-  cfg.fall_links = {"right_foot"};
+  cfg.env.fall_links = {"right_foot"};
   EXPECT_THROW(
       {
         try {
-          make_humanoid_forward_env(ch, nullptr, cfg);
+          make_imitation_env(ch, nullptr, cfg);
         } catch (const Error& e) {
-          EXPECT_NE(std::string(e.what()).find("no body 'right_foot'"), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find("'fall_links' names 'right_foot', a body"), std::string::npos) << e.what();
           throw;
         }
       },
@@ -639,15 +639,15 @@ TEST(HumanoidForward, FallLinksChooseWhichContactsEndTheEpisode) {
 // 0.1 m from the start's clip played on from the start and placed as the start was; without it
 // the same steps go on. The expected root is computed here from the clip directly: the clip's
 // displacement since the start, turned into the start's heading frame.
-TEST(HumanoidForward, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
+TEST(ImitationEnv, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
   const auto walk = moved(*test::humanoid3d_motion(ch, "humanoid3d_walk.txt"), -2.5, Vec3(-4, 7, 0));
   auto run = [&](double max_drift) {
-    HumanoidForwardConfig cfg;
+    ImitationEnvConfig cfg;
     cfg.init_noise = 0.0;
-    cfg.max_drift = max_drift;
-    auto env = make_humanoid_forward_env(ch, walk, cfg);
+    cfg.env.max_drift = max_drift;
+    auto env = make_imitation_env(ch, walk, cfg);
     std::mt19937_64 rng(5);
     env->reset(rng);
     const StartSource& source = env->start_source();
@@ -687,9 +687,9 @@ TEST(HumanoidForward, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
   ASSERT_GT(drifts_without.size(), drifts.size());
   for (std::size_t i = 0; i < drifts.size(); ++i) EXPECT_DOUBLE_EQ(drifts_without[i], drifts[i]) << i;
   // A start set directly (evaluation's) has no source: nothing to drift from.
-  HumanoidForwardConfig cfg;
-  cfg.max_drift = 0.3;
-  auto env = make_humanoid_forward_env(ch, walk, cfg);
+  ImitationEnvConfig cfg;
+  cfg.env.max_drift = 0.3;
+  auto env = make_imitation_env(ch, walk, cfg);
   env->reset(env->state_on_clip(*walk, 0.2));
   EXPECT_EQ(env->start_source().clip, nullptr);
   env->step(env->action_for(walk->sample(0.0)));
@@ -697,23 +697,23 @@ TEST(HumanoidForward, MaxDriftEndsAMocapStartThatFallsBehindItsClip) {
   EXPECT_FALSE(env->reference_pose().has_value());
 }
 
-TEST(HumanoidForward, MaxDriftNeedsMocapStarts) {
+TEST(ImitationEnv, MaxDriftNeedsMocapStarts) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  HumanoidForwardConfig cfg;
+  ImitationEnvConfig cfg;
   cfg.init = Init::FixedPose;
-  cfg.max_drift = 0.5;
+  cfg.env.max_drift = 0.5;
   try {
-    make_humanoid_forward_env(ch, nullptr, cfg);
+    make_imitation_env(ch, nullptr, cfg);
     FAIL() << "max_drift without a clip to measure against";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("max_drift"), std::string::npos) << e.what();
   }
   const YamlReader r("test.yaml");
-  const std::string message = factory_error(r, "{name: humanoid_forward, init: fixed,\n max_drift: 0.5}");
+  const std::string message = factory_error(r, "{name: imitation, init: fixed,\n max_drift: 0.5}");
   EXPECT_NE(message.find("test.yaml:2"), std::string::npos) << message;
   EXPECT_NE(message.find("'env.max_drift'"), std::string::npos) << message;
-  EXPECT_NE(factory_error(r, "{name: humanoid_forward, max_drift: -1}").find("max_drift"), std::string::npos);
+  EXPECT_NE(factory_error(r, "{name: imitation, max_drift: -1}").find("max_drift"), std::string::npos);
 }
 
 namespace {
@@ -728,56 +728,161 @@ CharacterEnvConfig made_config(const YamlReader& yaml, const std::string& env_ya
 
 // env.pd_limit reaches the simulation, in both humanoid environments; Spring by default (the
 // committed models were trained under it); anything else is an error naming the key.
-TEST(HumanoidForward, PdLimitKeyReachesTheWorld) {
+TEST(ImitationEnv, PdLimitKeyReachesTheWorld) {
   MIMIC_NEED_HUMANOID();
   const YamlReader yaml("test.yaml");
   auto limit_of = [&](const std::string& env_yaml) {
     const std::unique_ptr<Env> env = make_env_factory(yaml.parse(env_yaml, ""), yaml)();
     return dynamic_cast<const CharacterEnv&>(*env).world().config().pd_limit;
   };
-  EXPECT_EQ(limit_of("{name: humanoid_forward, init: fixed}"), PdLimit::Spring);
-  EXPECT_EQ(limit_of("{name: humanoid_forward, init: fixed, pd_limit: total}"), PdLimit::Total);
+  EXPECT_EQ(limit_of("{name: imitation, init: fixed}"), PdLimit::Spring);
+  EXPECT_EQ(limit_of("{name: imitation, init: fixed, pd_limit: total}"), PdLimit::Total);
   EXPECT_EQ(limit_of("{name: tracking}"), PdLimit::Spring);
   EXPECT_EQ(limit_of("{name: tracking, pd_limit: total}"), PdLimit::Total);
-  const std::string bad = factory_error(yaml, "{name: humanoid_forward, pd_limit: both}");
+  const std::string bad = factory_error(yaml, "{name: imitation, pd_limit: both}");
   EXPECT_NE(bad.find("pd_limit"), std::string::npos) << bad;
   EXPECT_NE(bad.find("total"), std::string::npos) << bad;
 }
 
-TEST(HumanoidForward, LiftStartsKeyReachesTheEnv) {
+TEST(ImitationEnv, LiftStartsKeyReachesTheEnv) {
   MIMIC_NEED_HUMANOID();
   const YamlReader yaml("test.yaml");
   auto lifts = [&](const std::string& env_yaml) { return made_config(yaml, env_yaml).lift_starts; };
-  EXPECT_FALSE(lifts("{name: humanoid_forward}"));
-  EXPECT_TRUE(lifts("{name: humanoid_forward, lift_starts: true}"));
+  EXPECT_FALSE(lifts("{name: imitation}"));
+  EXPECT_TRUE(lifts("{name: imitation, lift_starts: true}"));
   EXPECT_FALSE(lifts("{name: tracking}"));
   EXPECT_TRUE(lifts("{name: tracking, lift_starts: true}"));
   const std::string bad = factory_error(yaml, "{name: tracking, lift_starts: maybe}");
   EXPECT_NE(bad.find("lift_starts"), std::string::npos) << bad;
 }
 
-TEST(HumanoidForward, StartMomentumKeysReachTheEnv) {
+TEST(ImitationEnv, StartMomentumKeysReachTheEnv) {
   MIMIC_NEED_HUMANOID();
   const YamlReader yaml("test.yaml");
   auto smoothing = [&](const std::string& env_yaml) { return made_config(yaml, env_yaml).start_momentum; };
   using Statistic = StartMomentumSmoothing::Statistic;
-  const StartMomentumSmoothing plain = smoothing("{name: humanoid_forward}");
+  const StartMomentumSmoothing plain = smoothing("{name: imitation}");
   EXPECT_EQ(plain.window, 0.0);
   EXPECT_EQ(plain.statistic, Statistic::Mean);
   EXPECT_TRUE(plain.linear);
-  EXPECT_EQ(smoothing("{name: humanoid_forward, start_momentum_window: 0.1}").window, 0.1);
+  EXPECT_EQ(smoothing("{name: imitation, start_momentum_window: 0.1}").window, 0.1);
   const StartMomentumSmoothing median = smoothing(
-      "{name: humanoid_forward, start_momentum_window: 0.1, start_momentum_statistic: median, start_momentum_linear: false}");
+      "{name: imitation, start_momentum_window: 0.1, start_momentum_statistic: median, start_momentum_linear: false}");
   EXPECT_EQ(median.statistic, Statistic::Median);
   EXPECT_FALSE(median.linear);
-  const std::string bad = factory_error(yaml, "{name: humanoid_forward, start_momentum_window: -1}");
+  const std::string bad = factory_error(yaml, "{name: imitation, start_momentum_window: -1}");
   EXPECT_NE(bad.find("start_momentum_window"), std::string::npos) << bad;
   const std::string bad_statistic =
-      factory_error(yaml, "{name: humanoid_forward, start_momentum_window: 0.1, start_momentum_statistic: mode}");
+      factory_error(yaml, "{name: imitation, start_momentum_window: 0.1, start_momentum_statistic: mode}");
   EXPECT_NE(bad_statistic.find("start_momentum_statistic"), std::string::npos) << bad_statistic;
   // Without a window the keys would do nothing: an error, not a silent no-op. A window of 0 given
   // with them turns the smoothing off on purpose (eval --set env.start_momentum_window=0).
-  const std::string no_window = factory_error(yaml, "{name: humanoid_forward, start_momentum_linear: false}");
+  const std::string no_window = factory_error(yaml, "{name: imitation, start_momentum_linear: false}");
   EXPECT_NE(no_window.find("needs a start_momentum_window"), std::string::npos) << no_window;
-  EXPECT_EQ(smoothing("{name: humanoid_forward, start_momentum_window: 0, start_momentum_statistic: median}").window, 0.0);
+  EXPECT_EQ(smoothing("{name: imitation, start_momentum_window: 0, start_momentum_statistic: median}").window, 0.0);
+}
+
+// env.terrain, env.pushes and the height map's keys reach the character environment, in both
+// humanoid environments, and what they configure happens: the stairs are under the character's
+// path, the height map sees them, and a sideways push moves the root sideways.
+TEST(ImitationEnv, TerrainAndPushKeysReachTheEnv) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  const CharacterEnvConfig stairs = made_config(yaml, "{name: imitation, init: fixed, observations: [full_state, height_map], "
+                                                      "height_map_size: 3, height_map_spacing: 0.5, height_map_ahead: 2.5, "
+                                                      "terrain: {kind: stairs, start_zone: 1.0, step_height: 0.2, step_depth: 0.5}}");
+  EXPECT_EQ(stairs.terrain.kind, TerrainKind::Stairs);
+  EXPECT_EQ(stairs.terrain.step_height, 0.2);
+  EXPECT_EQ(stairs.observations.height_map_size, 3);
+  EXPECT_EQ(made_config(yaml, "{name: tracking}").terrain.kind, TerrainKind::Flat);
+  // The grid's centre is 2.4 m ahead of the root (at the origin, facing +x): x = 1.9, 2.4 and 2.9 m,
+  // on the second, third and fourth steps (each 0.5 m deep from x = 1.0, 0.2 m higher than the
+  // last), minus the root's height.
+  const std::unique_ptr<Env> env = make_env_factory(yaml.parse("{name: imitation, init: fixed, init_noise: 0, observations: [height_map], "
+                                                               "height_map_size: 3, height_map_spacing: 0.5, height_map_ahead: 2.4, "
+                                                               "terrain: {kind: stairs, start_zone: 1.0, step_height: 0.2, step_depth: 0.5}}",
+                                                               ""),
+                                                    yaml)();
+  std::mt19937_64 rng(1);
+  const Eigen::VectorXd obs = env->reset(rng);
+  ASSERT_EQ(obs.size(), 9);
+  const double root_z = dynamic_cast<const CharacterEnv&>(*env).world().root_position().z();
+  const auto& t = dynamic_cast<const CharacterEnv&>(*env).terrain();
+  EXPECT_NEAR(t.height(2.25, 0.0), 0.6, 1e-9);  // the third step
+  double highest = -1e9;
+  for (int i = 0; i < obs.size(); ++i) highest = std::max(highest, obs[i] + root_z);
+  EXPECT_NEAR(highest, 0.8, 1e-6);  // the fourth step's top, under the grid's far row
+
+  // A 400 N push to the left (+y) on the chest for 0.2 s, 0.1 s into the episode.
+  auto root_y_after = [&](const std::string& pushes) {
+    const std::unique_ptr<Env> e =
+        make_env_factory(yaml.parse("{name: tracking, clip: deepmimic/motions/humanoid3d_walk.txt, init: fixed" + pushes + "}", ""), yaml)();
+    auto& c = dynamic_cast<CharacterEnv&>(*e);
+    std::mt19937_64 r(1);
+    c.reset(r);
+    const double y0 = c.world().root_position().y();
+    for (int i = 0; i < 12; ++i) c.step(c.action_for(c.world().pose()));
+    return c.world().root_position().y() - y0;
+  };
+  const double pushed = root_y_after(", pushes: [{link: chest, force: [0, 400, 0], start: 0.1, duration: 0.2}]");
+  const double left_alone = root_y_after("");
+  EXPECT_GT(pushed - left_alone, 0.02) << pushed << " against " << left_alone;
+  EXPECT_EQ(made_config(yaml, "{name: tracking, pushes: [{link: chest, force: [0, 400, 0], start: 0.1, duration: 0.2}]}").pushes.size(), 1u);
+
+  // Errors name the key and its line.
+  const std::string unknown_link = factory_error(yaml, "{name: imitation, init: fixed,\n pushes: [{link: tail, force: [1, 0, 0]}]}");
+  EXPECT_NE(unknown_link.find("test.yaml:2"), std::string::npos) << unknown_link;
+  EXPECT_NE(unknown_link.find("'env.pushes'"), std::string::npos) << unknown_link;
+  EXPECT_NE(unknown_link.find("tail"), std::string::npos) << unknown_link;
+  EXPECT_NE(factory_error(yaml, "{name: imitation, pushes: [{link: chest}]}").find("missing 'force'"), std::string::npos);
+  EXPECT_NE(factory_error(yaml, "{name: imitation, pushes: [{link: chest, force: [1, 2]}]}").find("force"), std::string::npos);
+  EXPECT_NE(factory_error(yaml, "{name: imitation, terrain: {kind: lava}}").find("env.terrain.kind"), std::string::npos);
+  EXPECT_NE(factory_error(yaml, "{name: imitation, terrain: {kind: stairs, steps: 3}}").find("steps"), std::string::npos);
+}
+
+// `humanoid_forward`, the name models saved before the imitation environment had its own, makes
+// the same environment.
+TEST(ImitationEnv, HumanoidForwardIsTheImitationEnvironment) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  auto layout = [&](const std::string& name) {
+    return make_env_factory(yaml.parse("{name: " + name + ", observations: [links, link_velocities], link_history: 5}", ""), yaml)()
+        ->observation_size();
+  };
+  EXPECT_EQ(layout("humanoid_forward"), layout("imitation"));
+  EXPECT_EQ(made_config(yaml, "{name: humanoid_forward, max_drift: 0.4}").max_drift, 0.4);
+}
+
+// allow_clip_contacts: a get-up's clip rests its back, hands and knees on the ground, so those stop
+// being falls; the four Table 2 clips rest only their feet there (the run's shins reach 4 mm into the
+// floor beside a planted foot, the knee high), so the recipe's rule changes nothing for
+// them. Without the key every fall link stays.
+TEST(ImitationEnv, BodiesTheClipPutsOnTheGroundAreNotFalls) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  const std::string recipe_falls =
+      "fall_links: [root, chest, neck, right_hip, right_knee, right_shoulder, right_elbow, right_wrist, "
+      "left_hip, left_knee, left_shoulder, left_elbow, left_wrist]";
+  auto falls = [&](const std::string& clip, bool allow) {
+    const std::unique_ptr<Env> env = make_env_factory(
+        yaml.parse("{name: imitation, clip: deepmimic/motions/humanoid3d_" + clip + ".txt, " + recipe_falls +
+                       (allow ? ", allow_clip_contacts: true}" : "}"),
+                   ""),
+        yaml)();
+    return dynamic_cast<const CharacterEnv&>(*env).fall_bodies();
+  };
+  const std::vector<std::string> all = falls("walk", false);
+  ASSERT_EQ(all.size(), 13u);
+  for (const char* clip : {"walk", "run", "kick", "punch"}) EXPECT_EQ(falls(clip, true), all) << clip;
+  // What each get-up's clip keeps as falls: the face-up one lies on its back and sits on its
+  // shins, never on its thighs; the face-down one pushes up on hands, elbows and knees, its head
+  // and shoulders off the ground.
+  EXPECT_EQ(falls("getup_faceup", false), all);
+  EXPECT_EQ(falls("getup_faceup", true), (std::vector<std::string>{"right_hip", "left_hip"}));
+  EXPECT_EQ(falls("getup_facedown", true), (std::vector<std::string>{"neck", "right_shoulder", "left_shoulder"}));
+  // The tracking env applies it to its reference.
+  const std::unique_ptr<Env> tracking = make_env_factory(
+      yaml.parse("{name: tracking, clip: deepmimic/motions/humanoid3d_getup_faceup.txt, " + recipe_falls + ", allow_clip_contacts: true}", ""),
+      yaml)();
+  EXPECT_EQ(dynamic_cast<const CharacterEnv&>(*tracking).fall_bodies(), falls("getup_faceup", true));
 }

@@ -1,4 +1,4 @@
-#include "env/humanoid_forward.hpp"
+#include "env/imitation_env.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,8 +48,8 @@ void perturb_joints(Pose& p, const Skeleton& sk, double noise, std::mt19937_64& 
   }
 }
 
-void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const std::vector<std::shared_ptr<const Clip>>& clips) {
-  auto fail = [](const std::string& what) { throw Error("humanoid_forward: " + what); };
+void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::vector<std::shared_ptr<const Clip>>& clips) {
+  auto fail = [](const std::string& what) { throw Error("imitation env: " + what); };
   const std::pair<const char*, double> values[] = {
       {"alive_bonus", cfg.alive_bonus},       {"forward_weight", cfg.forward_weight},
       {"target_speed", cfg.target_speed},     {"lateral_weight", cfg.lateral_weight},
@@ -58,11 +58,10 @@ void check(const HumanoidForwardConfig& cfg, const CharacterModel& ch, const std
     if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
   if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_period > 0) || !std::isfinite(cfg.goal_period))
     fail("goal_speed and goal_weight must be non-negative and goal_period positive");
-  if (cfg.init == HumanoidForwardConfig::Init::Mocap && clips.empty())
+  if (cfg.init == ImitationEnvConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
-  if (!(cfg.max_drift >= 0) || !std::isfinite(cfg.max_drift)) fail("max_drift must be a non-negative number");
-  if (cfg.max_drift > 0 && cfg.init != HumanoidForwardConfig::Init::Mocap)
-    fail("max_drift measures against the clip a start was drawn from, so it needs mocap starts");
+  if (cfg.env.max_drift > 0 && cfg.init != ImitationEnvConfig::Init::Mocap)
+    throw KeyError("max_drift", "measures against the clip a start was drawn from: it needs mocap starts (init: mocap)");
   for (const auto& clip : clips) {
     if (!clip) fail("a clip of the list is missing");
     if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
@@ -87,14 +86,13 @@ std::pair<std::shared_ptr<const Clip>, double> draw_clip_time(std::span<const st
 
 // CharacterEnv does not keep the action or the root's position before a step: this keeps both
 // for the control and forward terms, and the goal's target direction.
-class HumanoidForwardEnv final : public CharacterEnv {
+class ImitationEnv final : public CharacterEnv {
  public:
-  HumanoidForwardEnv(const CharacterModel& ch, const CharacterEnvConfig& env_cfg,
-                     const HumanoidForwardConfig& cfg)
-      : CharacterEnv(ch, env_cfg), cfg_(cfg), dt_(1.0 / env_cfg.sim.control_hz) {
+  ImitationEnv(const CharacterModel& ch, const ImitationEnvConfig& cfg)
+      : CharacterEnv(ch, cfg.env), cfg_(cfg), dt_(1.0 / cfg.env.sim.control_hz) {
     const double dt = dt_;
     add_reward_term("alive", [bonus = cfg.alive_bonus](const CharacterEnv&) { return bonus; });
-    if (cfg.goal == HumanoidForwardConfig::Goal::Heading) {
+    if (cfg.goal == ImitationEnvConfig::Goal::Heading) {
       add_reward_term("goal", [this, dt](const CharacterEnv& env) {
         const Vec3 now = env.world().root_position();
         const double along = (std::cos(goal_) * (now.x() - before_.x()) + std::sin(goal_) * (now.y() - before_.y())) / dt;
@@ -143,7 +141,7 @@ class HumanoidForwardEnv final : public CharacterEnv {
     return r;
   }
 
-  bool has_goal() const { return cfg_.goal == HumanoidForwardConfig::Goal::Heading; }
+  bool has_goal() const { return cfg_.goal == ImitationEnvConfig::Goal::Heading; }
   double goal() const { return goal_; }
   void set_goal(double yaw) { goal_ = yaw; }
 
@@ -155,7 +153,7 @@ class HumanoidForwardEnv final : public CharacterEnv {
     out[0] = std::cos(relative), out[1] = std::sin(relative);
   }
 
-  HumanoidForwardConfig cfg_;
+  ImitationEnvConfig cfg_;
   double dt_;
   Eigen::VectorXd action_;
   Vec3 before_ = Vec3::Zero();
@@ -166,44 +164,37 @@ class HumanoidForwardEnv final : public CharacterEnv {
 }  // namespace
 
 double goal_heading(const CharacterEnv& env) {
-  const auto* h = dynamic_cast<const HumanoidForwardEnv*>(&env);
-  if (!h || !h->has_goal()) throw Error("goal_heading: not a humanoid_forward environment with goal: heading");
+  const auto* h = dynamic_cast<const ImitationEnv*>(&env);
+  if (!h || !h->has_goal()) throw Error("goal_heading: not an imitation environment with goal: heading");
   return h->goal();
 }
 
 void set_goal_heading(CharacterEnv& env, double yaw) {
-  auto* h = dynamic_cast<HumanoidForwardEnv*>(&env);
-  if (!h || !h->has_goal()) throw Error("set_goal_heading: not a humanoid_forward environment with goal: heading");
+  auto* h = dynamic_cast<ImitationEnv*>(&env);
+  if (!h || !h->has_goal()) throw Error("set_goal_heading: not an imitation environment with goal: heading");
   h->set_goal(yaw);
 }
 
-std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
+std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch,
                                                         std::shared_ptr<const Clip> clip,
-                                                        const HumanoidForwardConfig& cfg) {
+                                                        const ImitationEnvConfig& cfg) {
   std::vector<std::shared_ptr<const Clip>> clips;
   if (clip) clips.push_back(std::move(clip));
-  return make_humanoid_forward_env(ch, std::move(clips), cfg);
+  return make_imitation_env(ch, std::move(clips), cfg);
 }
 
-std::unique_ptr<CharacterEnv> make_humanoid_forward_env(const CharacterModel& ch,
+std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch,
                                                         std::vector<std::shared_ptr<const Clip>> clips,
-                                                        const HumanoidForwardConfig& cfg) {
+                                                        const ImitationEnvConfig& cfg) {
   check(cfg, ch, clips);
-  CharacterEnvConfig env_cfg;
-  env_cfg.observations = cfg.observations;
-  env_cfg.max_seconds = cfg.max_seconds;
-  env_cfg.projectiles = cfg.projectiles;
-  env_cfg.fall_links = cfg.fall_links;
-  env_cfg.max_drift = cfg.max_drift;
-  env_cfg.sim.pd_limit = cfg.pd_limit;
-  env_cfg.lift_starts = cfg.lift_starts;
-  env_cfg.start_momentum = cfg.start_momentum;
   // The clips are not the env's reference: they supply starts (and a non-cyclic one's end), not
   // the phase a reference would (nothing is tracked).
-  auto env = std::make_unique<HumanoidForwardEnv>(ch, env_cfg, cfg);
+  auto env = std::make_unique<ImitationEnv>(ch, cfg);
+  if (cfg.env.allow_clip_contacts)
+    for (const auto& clip : clips) env->allow_contacts_of(*clip);
   const Skeleton sk = ch.skeleton;
   const double noise = cfg.init_noise;
-  if (cfg.init == HumanoidForwardConfig::Init::Mocap) {
+  if (cfg.init == ImitationEnvConfig::Init::Mocap) {
     const CharacterEnv* self = env.get();  // the sampler lives in the env it reads
     env->set_start_groups(static_cast<int>(clips.size()));
     env->set_init_sampler([clips, sk, noise, self](std::mt19937_64& rng) {
