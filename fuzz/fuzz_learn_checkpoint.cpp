@@ -11,7 +11,7 @@
 #include "core/file_io.hpp"
 #include "fuzz_common.hpp"
 #include "fuzz_seeds.hpp"
-#include "learn/trainer.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace {
 

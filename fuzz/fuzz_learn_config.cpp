@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 #include "fuzz_common.hpp"
 #include "fuzz_seeds.hpp"
-#include "learn/train_config.hpp"
+#include "learn/trainer/train_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string input(mimic::fuzz::as_text(data, size));

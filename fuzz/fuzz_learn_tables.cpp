@@ -9,8 +9,8 @@
 #include "core/error.hpp"
 #include "fuzz_common.hpp"
 #include "fuzz_seeds.hpp"
-#include "learn/demonstrations.hpp"
-#include "learn/run_log.hpp"
+#include "learn/imitation/demonstrations.hpp"
+#include "learn/trainer/run_log.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;

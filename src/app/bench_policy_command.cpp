@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
-#include "learn/policy_timing.hpp"
+#include "learn/networks/policy_timing.hpp"
 #include "mimic/runtime.hpp"
 
 namespace mimic::app {

@@ -20,8 +20,8 @@
 #include "app/run_skill.hpp"
 #include "control/skill_impl.hpp"
 #include "env/tracking.hpp"
-#include "learn/imitation_eval.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/imitation_eval.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic::app {
 
@@ -86,7 +86,7 @@ std::string best_model(const std::string& skill) {
 }
 
 // Seed 003's tracking on a built-in clip and body: a few minutes of PPO from scratch.
-void learn_builtin(const Clip& learnt, const std::filesystem::path& dir, int iterations, bool video, std::string& summary) {
+void learn_builtin(const Clip& learnt, const std::filesystem::path& dir, int iterations, int trials, bool video, std::string& summary) {
   const auto ch = std::make_shared<const CharacterModel>(CharacterModel::from_skeleton(learnt.skeleton, "builtin_humanoid"));
   const auto clip = std::make_shared<const Clip>(learnt);
   const std::string name = learnt.name;
@@ -111,11 +111,11 @@ void learn_builtin(const Clip& learnt, const std::filesystem::path& dir, int ite
   Trainer trainer(parse_train_config(config, "mimic demo"), opts);
   // The policy acts on the runtime (control/), from the trainer's networks as export writes them.
   auto skill = [&] { return skill_in(opts.env_factory, trainer.runtime_networks(), opts.run_dir / "checkpoint.pt", name); };
-  const std::string before = imitation_line(*skill(), 10);
+  const std::string before = imitation_line(*skill(), trials);
   spdlog::info("learning: tracking the {} ({} iterations of 2,048 samples; before training: {})", name, iterations, before);
   trainer.run();
   const std::shared_ptr<const Skill> trained = skill();
-  const std::string after = imitation_line(*trained, 10);
+  const std::string after = imitation_line(*trained, trials);
   const std::string line = fmt::format("learning    {} tracked after {} samples: {} (untrained: {}); run in {}", name, trainer.samples(),
                                        after, before, opts.run_dir.string());
   fmt::print("{}\n", line);
@@ -129,19 +129,23 @@ void add_demo_command(CLI::App& app) {
   auto out = std::make_shared<std::filesystem::path>("out/demo");
   auto video = std::make_shared<bool>(true);
   auto iterations = std::make_shared<int>(kDemoIterations);
+  auto trials = std::make_shared<int>(10);
   CLI::App* demo = app.add_subcommand("demo", "run mimic's showcase on built-in (and, if present, shared) motion");
   demo->add_option("-o,--output", *out, "output directory")->capture_default_str();
   demo->add_flag("!--no-video", *video, "skip the videos (pictures and clips only)");
   demo->add_option("--train-iterations", *iterations, "PPO iterations of 2,048 samples of the squat's tracking policy (0: skip learning)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  demo->callback([out, video, iterations] {
+  demo->add_option("--trials", *trials, "evaluation trials of each policy (evenly spaced phases of its clip)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  demo->callback([out, video, iterations, trials] {
     std::string summary;
     // 1. Motion the project authors itself, on a simple body: always available.
     const Clip jack = builtin_jumping_jack(), squat = builtin_squat();
     show(jack, CharacterModel::from_skeleton(jack.skeleton, "builtin_humanoid"), *out, 3.0, *video, 160.0, summary);
     show(squat, CharacterModel::from_skeleton(squat.skeleton, "builtin_humanoid"), *out, 4.0, *video, 120.0, summary);
-    if (*iterations > 0) learn_builtin(squat, *out, *iterations, *video, summary);
+    if (*iterations > 0) learn_builtin(squat, *out, *iterations, *trials, *video, summary);
     // 2. Real capture: CMU walk retargeted onto the DeepMimic humanoid, when ../shared is here.
     const auto data = shared_data_dir();
     const auto bvh = data / "cmu-bvh/131_01.bvh", ch = data / "deepmimic/characters/humanoid3d.txt";
@@ -166,7 +170,7 @@ void add_demo_command(CLI::App& app) {
         const Clip reference =
             load_deepmimic_motion(data / ("deepmimic/motions/humanoid3d_" + std::string(skill) + ".txt"), humanoid.skeleton);
         const std::shared_ptr<const Skill> policy = run_skill(model);
-        const std::string line = "pretrained  " + model.filename().string() + ": " + imitation_line(*policy, 10, &reference);
+        const std::string line = "pretrained  " + model.filename().string() + ": " + imitation_line(*policy, *trials, &reference);
         fmt::print("{}\n", line);
         summary += line + "\n";
         if (*video) film(*policy, *out / (model.filename().string() + "_policy.mp4"), 8.0);

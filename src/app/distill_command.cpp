@@ -1,5 +1,5 @@
 // mimic distill CONFIG --teacher RUN... -o OUT: several single-skill policies become one that
-// switches on a behaviour context (DAgger; learn/distillation.hpp). The result is a run directory
+// switches on a behaviour context (DAgger; learn/imitation/distillation.hpp). The result is a run directory
 // like any other (config.yaml + checkpoint.pt): mimic eval, render, export, and mimic train
 // --init-from OUT to fine-tune it with the config's rewards.
 #include <spdlog/spdlog.h>
@@ -16,8 +16,8 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
-#include "learn/distillation.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/distillation.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic::app {
 

@@ -23,9 +23,9 @@
 #include "core/yaml_reader.hpp"
 #include "env/context_env.hpp"
 #include "env/env_factory.hpp"
-#include "learn/clip_demonstrations.hpp"
-#include "learn/run_log.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/clip_demonstrations.hpp"
+#include "learn/trainer/run_log.hpp"
+#include "learn/trainer/trainer.hpp"
 #include "motion/retarget.hpp"
 #include "render/line_chart.hpp"
 

@@ -16,8 +16,8 @@
 #include "env/env_factory.hpp"
 #include "app/run_skill.hpp"
 #include "control/skill_impl.hpp"
-#include "learn/clip_demonstrations.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/clip_demonstrations.hpp"
+#include "learn/trainer/trainer.hpp"
 #include "motion/clip_io.hpp"
 
 namespace mimic::app {

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "env/character_env.hpp"
 #include "env/context_env.hpp"
-#include "learn/frame_history.hpp"
+#include "learn/imitation/frame_history.hpp"
 #include "app/run_skill.hpp"
 #include "control/skill_impl.hpp"
 #include "render/offscreen.hpp"

@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
-#include "learn/run_log.hpp"
+#include "learn/trainer/run_log.hpp"
 #include "render/line_chart.hpp"
 
 namespace mimic::app {

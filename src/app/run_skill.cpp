@@ -2,9 +2,9 @@
 
 #include "control/skill_impl.hpp"
 #include "core/file_io.hpp"
-#include "learn/runtime_format.hpp"
-#include "learn/train_config.hpp"
-#include "learn/trainer.hpp"
+#include "learn/networks/runtime_format.hpp"
+#include "learn/trainer/train_config.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic::app {
 

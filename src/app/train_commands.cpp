@@ -9,9 +9,9 @@
 #include "core/config_file.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "learn/runtime_format.hpp"
-#include "learn/train_bench.hpp"
-#include "learn/trainer.hpp"
+#include "learn/networks/runtime_format.hpp"
+#include "learn/trainer/train_bench.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic::app {
 

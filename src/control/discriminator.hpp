@@ -1,6 +1,6 @@
 #pragma once
 // A discriminator a skill was trained against, evaluated with Eigen in float32 as
-// learn/discriminator.cpp computes its reward with LibTorch: the transition's features (chosen
+// learn/rewards/discriminator.cpp computes its reward with LibTorch: the transition's features (chosen
 // observation entries of s', of (s, s') or of (s, a), each state followed by a behaviour
 // context's one-hot where it has one), standardised, through the network, and its heads' outputs
 // turned into a reward: seed 004 eq. 5's mean of clip(D_i, -1, 1) for the hinge ensemble, or

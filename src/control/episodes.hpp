@@ -1,6 +1,6 @@
 #pragma once
 // Whole episodes of a skill in its own environment, run as training's collector runs them
-// (learn/collector.hpp, episodes mode): `slots` environments side by side, each with its own
+// (learn/ppo/collector.hpp, episodes mode): `slots` environments side by side, each with its own
 // generator drawn from (seed, "mimic"), inference batched over the environments still running,
 // exploration noise drawn in environment order. So the same seed gives the episodes `mimic train`
 // would have evaluated, on the torch-free networks: what `mimic eval` reports and `mimic record`
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <random>
 
-#include "learn/rollout.hpp"
+#include "learn/ppo/rollout.hpp"
 #include "mimic/runtime.hpp"
 
 namespace mimic {

@@ -1,5 +1,5 @@
 #pragma once
-// A policy or value network evaluated with Eigen, in float32, as learn/networks.hpp's FeatureNet
+// A policy or value network evaluated with Eigen, in float32, as learn/networks/networks.hpp's FeatureNet
 // computes it with LibTorch: an optional GRU over the last `history` frames (its final hidden
 // state), then linear layers with ReLU or tanh between them. Immutable once loaded: one Network
 // may be shared by any number of threads.

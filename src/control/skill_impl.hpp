@@ -5,7 +5,7 @@
 #include "control/discriminator.hpp"
 #include "control/network.hpp"
 #include "env/env_factory.hpp"
-#include "learn/runtime_format.hpp"
+#include "learn/networks/runtime_format.hpp"
 #include "mimic/runtime.hpp"
 
 namespace mimic {
@@ -17,7 +17,7 @@ struct Skill::Impl {
   int frame_size = 0, history = 1, action_size = 0;
   std::vector<ObservationSlice> layout;
   std::vector<std::string> bodies;  // the character's MuJoCo bodies after the world body
-  // The observation normaliser as learn/normalizer.hpp applies it (identity before any statistics).
+  // The observation normaliser as learn/networks/normalizer.hpp applies it (identity before any statistics).
   bool normalise = false;
   Eigen::VectorXd mean, inv_std;
   double clip = 0.0;

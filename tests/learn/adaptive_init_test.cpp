@@ -2,7 +2,7 @@
 // drawn around the reference at fixed phases, the gradient step moving the means toward high
 // returns on a toy return function, episode returns recorded by the wrapper, and the trainer
 // saving the distribution with its checkpoint.
-#include "learn/adaptive_init.hpp"
+#include "learn/imitation/adaptive_init.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "env/tracking.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 #include "../humanoid_data.hpp"
 #include "trainer_access.hpp"
 

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "learn/advantage.hpp"
+#include "learn/ppo/advantage.hpp"
 
 using namespace mimic;
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 #include "imitation_fixtures.hpp"
 #include "../error_message.hpp"
 #include "trainer_access.hpp"

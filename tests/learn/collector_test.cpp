@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "learn/collector.hpp"
+#include "learn/ppo/collector.hpp"
 #include "toy_env.hpp"
 
 using namespace mimic;

@@ -1,6 +1,6 @@
 // Behaviour switches measured (mimic eval --switch): a puck whose "policy" moves it at 1 m/s along
 // x in context 0 and at 3 m/s along y in context 1, so every figure is known by hand.
-#include "learn/context_switch.hpp"
+#include "learn/imitation/context_switch.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "learn/discriminator.hpp"
+#include "learn/rewards/discriminator.hpp"
 
 using namespace mimic;
 

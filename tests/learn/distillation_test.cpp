@@ -6,8 +6,8 @@
 
 #include "core/error.hpp"
 #include "env/context_env.hpp"
-#include "learn/distillation.hpp"
-#include "learn/train_config.hpp"
+#include "learn/imitation/distillation.hpp"
+#include "learn/trainer/train_config.hpp"
 #include "toy_env.hpp"
 #include "../error_message.hpp"
 #include "trainer_access.hpp"

@@ -6,9 +6,9 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "learn/adversarial_reward.hpp"
-#include "learn/run_log.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
+#include "learn/trainer/run_log.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 #include "imitation_fixtures.hpp"
 #include "../test_data.hpp"
 #include "trainer_access.hpp"

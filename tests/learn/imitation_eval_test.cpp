@@ -1,7 +1,7 @@
 // The imitation error of DESIGN.md section 5 (seed 004 eq. 7): pinned on synthetic trajectories
 // with known offsets, then measured on the humanoid for a policy that follows the clip and one
 // that stands still.
-#include "learn/imitation_eval.hpp"
+#include "learn/imitation/imitation_eval.hpp"
 
 #include <gtest/gtest.h>
 

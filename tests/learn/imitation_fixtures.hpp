@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "env/context_env.hpp"
-#include "learn/demonstrations.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/demonstrations.hpp"
+#include "learn/trainer/trainer.hpp"
 #include "toy_env.hpp"
 #include "trainer_access.hpp"
 

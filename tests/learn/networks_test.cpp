@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "learn/networks.hpp"
-#include "learn/ppo.hpp"
+#include "learn/networks/networks.hpp"
+#include "learn/ppo/ppo.hpp"
 
 using namespace mimic;
 

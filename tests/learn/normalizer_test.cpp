@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "learn/normalizer.hpp"
+#include "learn/networks/normalizer.hpp"
 
 using namespace mimic;
 

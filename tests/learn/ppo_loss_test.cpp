@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "learn/ppo_loss.hpp"
+#include "learn/ppo/ppo_loss.hpp"
 
 using namespace mimic;
 

@@ -9,8 +9,8 @@
 #include <iostream>
 
 #include "env/tracking.hpp"
-#include "learn/imitation_eval.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/imitation_eval.hpp"
+#include "learn/trainer/trainer.hpp"
 #include "motion/clip.hpp"
 #include "sim/character_model.hpp"
 #include "trainer_access.hpp"

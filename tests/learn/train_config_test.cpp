@@ -9,7 +9,7 @@
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
 #include "env/env_factory.hpp"
-#include "learn/train_config.hpp"
+#include "learn/trainer/train_config.hpp"
 
 using namespace mimic;
 

@@ -6,10 +6,10 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
-#include "learn/adversarial_reward.hpp"
-#include "learn/per_context_reward.hpp"
-#include "learn/policy_timing.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
+#include "learn/rewards/per_context_reward.hpp"
+#include "learn/networks/policy_timing.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic::test {
 

@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 #include "toy_env.hpp"
 #include "../humanoid_data.hpp"
 #include "../test_data.hpp"

@@ -1,4 +1,4 @@
-#include "learn/adaptive_init.hpp"
+#include "learn/imitation/adaptive_init.hpp"
 
 #include <cmath>
 #include <utility>

@@ -26,7 +26,7 @@
 #include <random>
 
 #include "env/character_env.hpp"
-#include "learn/train_config.hpp"
+#include "learn/trainer/train_config.hpp"
 
 namespace mimic {
 

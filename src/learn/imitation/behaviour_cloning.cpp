@@ -4,7 +4,7 @@
 #include <numeric>
 
 #include "core/error.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
 

@@ -1,4 +1,4 @@
-#include "learn/clip_demonstrations.hpp"
+#include "learn/imitation/clip_demonstrations.hpp"
 
 #include <mujoco/mujoco.h>
 

@@ -5,7 +5,7 @@
 // columns), so only `transition: s` or `ss` can use these files. A "links" history holds the clip's
 // previous poses, as a policy's does in mid-episode (seed 004's o_{t-3:t+1}). Torch-free.
 #include "env/character_env.hpp"
-#include "learn/demonstrations.hpp"
+#include "learn/imitation/demonstrations.hpp"
 
 namespace mimic {
 

@@ -1,11 +1,11 @@
-#include "learn/context_switch.hpp"
+#include "learn/imitation/context_switch.hpp"
 
 #include <mujoco/mujoco.h>
 
 #include <string>
 
 #include "core/error.hpp"
-#include "learn/frame_history.hpp"
+#include "learn/imitation/frame_history.hpp"
 
 namespace mimic {
 

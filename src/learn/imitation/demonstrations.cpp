@@ -1,4 +1,4 @@
-#include "learn/demonstrations.hpp"
+#include "learn/imitation/demonstrations.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "learn/run_log.hpp"
+#include "learn/trainer/run_log.hpp"
 
 namespace mimic {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "env/env.hpp"
-#include "learn/rollout.hpp"
+#include "learn/ppo/rollout.hpp"
 
 namespace mimic {
 

@@ -1,11 +1,11 @@
-#include "learn/distillation.hpp"
+#include "learn/imitation/distillation.hpp"
 
 #include <algorithm>
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "env/context_env.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
 

@@ -12,9 +12,9 @@
 #include <functional>
 #include <vector>
 
-#include "learn/demonstrations.hpp"
-#include "learn/imitation_eval.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/demonstrations.hpp"
+#include "learn/imitation/imitation_eval.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic {
 

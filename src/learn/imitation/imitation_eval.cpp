@@ -1,4 +1,4 @@
-#include "learn/imitation_eval.hpp"
+#include "learn/imitation/imitation_eval.hpp"
 
 #include <cmath>
 #include <limits>
@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
-#include "learn/frame_history.hpp"
+#include "learn/imitation/frame_history.hpp"
 
 namespace mimic {
 

@@ -1,4 +1,4 @@
-#include "learn/input_widening.hpp"
+#include "learn/networks/input_widening.hpp"
 
 #include <algorithm>
 

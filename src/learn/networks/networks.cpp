@@ -1,4 +1,4 @@
-#include "learn/networks.hpp"
+#include "learn/networks/networks.hpp"
 
 #include <unistd.h>
 

@@ -5,7 +5,7 @@
 // parameter that is trained or fixed (SFV's fixed covariance).
 #include <torch/torch.h>
 
-#include "learn/train_config.hpp"
+#include "learn/trainer/train_config.hpp"
 
 namespace mimic {
 

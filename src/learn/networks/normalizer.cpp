@@ -1,4 +1,4 @@
-#include "learn/normalizer.hpp"
+#include "learn/networks/normalizer.hpp"
 
 #include <string>
 

@@ -1,6 +1,6 @@
-#include "learn/policy_timing.hpp"
+#include "learn/networks/policy_timing.hpp"
 
-#include "learn/trainer_impl.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/stopwatch.hpp"
-#include "learn/trainer.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic {
 

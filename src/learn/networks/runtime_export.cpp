@@ -1,9 +1,9 @@
-#include "learn/runtime_export.hpp"
+#include "learn/networks/runtime_export.hpp"
 
 
 #include "core/file_io.hpp"
-#include "learn/adversarial_reward.hpp"
-#include "learn/per_context_reward.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
+#include "learn/rewards/per_context_reward.hpp"
 #include "sim/mujoco_load.hpp"
 
 namespace mimic {

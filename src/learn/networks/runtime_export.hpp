@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "core/array_file.hpp"
-#include "learn/runtime_format.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/networks/runtime_format.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
 

@@ -1,4 +1,4 @@
-#include "learn/advantage.hpp"
+#include "learn/ppo/advantage.hpp"
 
 #include "core/error.hpp"
 

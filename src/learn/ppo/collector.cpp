@@ -1,4 +1,4 @@
-#include "learn/collector.hpp"
+#include "learn/ppo/collector.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -9,10 +9,10 @@
 
 #include "core/worker_pool.hpp"
 #include "env/env_factory.hpp"
-#include "learn/networks.hpp"
-#include "learn/frame_history.hpp"
-#include "learn/normalizer.hpp"
-#include "learn/rollout.hpp"
+#include "learn/networks/networks.hpp"
+#include "learn/imitation/frame_history.hpp"
+#include "learn/networks/normalizer.hpp"
+#include "learn/ppo/rollout.hpp"
 
 namespace mimic {
 

@@ -1,4 +1,4 @@
-#include "learn/divergence.hpp"
+#include "learn/ppo/divergence.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "learn/ppo.hpp"
+#include "learn/ppo/ppo.hpp"
 
 #include <algorithm>
 #include <cmath>

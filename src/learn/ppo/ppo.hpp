@@ -8,9 +8,9 @@
 #include <random>
 
 #include "core/error.hpp"
-#include "learn/divergence.hpp"
-#include "learn/networks.hpp"
-#include "learn/ppo_loss.hpp"
+#include "learn/ppo/divergence.hpp"
+#include "learn/networks/networks.hpp"
+#include "learn/ppo/ppo_loss.hpp"
 
 namespace mimic {
 

@@ -1,4 +1,4 @@
-#include "learn/ppo_loss.hpp"
+#include "learn/ppo/ppo_loss.hpp"
 
 #include <cmath>
 #include <numbers>

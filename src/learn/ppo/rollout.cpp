@@ -1,4 +1,4 @@
-#include "learn/rollout.hpp"
+#include "learn/ppo/rollout.hpp"
 
 namespace mimic {
 

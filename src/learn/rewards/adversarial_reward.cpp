@@ -1,4 +1,4 @@
-#include "learn/adversarial_reward.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -6,8 +6,8 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "env/context_env.hpp"
-#include "learn/input_widening.hpp"
-#include "learn/per_context_reward.hpp"
+#include "learn/networks/input_widening.hpp"
+#include "learn/rewards/per_context_reward.hpp"
 
 namespace mimic {
 

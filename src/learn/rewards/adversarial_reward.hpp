@@ -9,9 +9,9 @@
 #include <memory>
 
 #include "core/config_section.hpp"
-#include "learn/demonstrations.hpp"
-#include "learn/discriminator.hpp"
-#include "learn/reward_source.hpp"
+#include "learn/imitation/demonstrations.hpp"
+#include "learn/rewards/discriminator.hpp"
+#include "learn/rewards/reward_source.hpp"
 
 namespace mimic {
 

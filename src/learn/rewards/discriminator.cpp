@@ -1,4 +1,4 @@
-#include "learn/discriminator.hpp"
+#include "learn/rewards/discriminator.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <numeric>
 
 #include "core/error.hpp"
-#include "learn/archive_util.hpp"
-#include "learn/divergence.hpp"
-#include "learn/input_widening.hpp"
+#include "learn/networks/archive_util.hpp"
+#include "learn/ppo/divergence.hpp"
+#include "learn/networks/input_widening.hpp"
 
 namespace mimic {
 

@@ -10,7 +10,7 @@
 #include <limits>
 #include <random>
 
-#include "learn/networks.hpp"
+#include "learn/networks/networks.hpp"
 
 namespace mimic {
 

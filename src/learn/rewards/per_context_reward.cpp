@@ -1,4 +1,4 @@
-#include "learn/per_context_reward.hpp"
+#include "learn/rewards/per_context_reward.hpp"
 
 #include <torch/serialize.h>
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "learn/adversarial_reward.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
 
 namespace mimic {
 

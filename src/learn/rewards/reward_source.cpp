@@ -1,8 +1,8 @@
-#include "learn/reward_source.hpp"
+#include "learn/rewards/reward_source.hpp"
 
 #include "core/config_section.hpp"
 #include "core/error.hpp"
-#include "learn/adversarial_reward.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
 
 namespace mimic {
 

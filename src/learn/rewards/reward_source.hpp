@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "env/env.hpp"
-#include "learn/rollout.hpp"
-#include "learn/train_config.hpp"
+#include "learn/ppo/rollout.hpp"
+#include "learn/trainer/train_config.hpp"
 
 namespace torch::serialize {
 class OutputArchive;

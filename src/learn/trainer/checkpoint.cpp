@@ -9,10 +9,10 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/zip_integrity.hpp"
-#include "learn/archive_util.hpp"
-#include "learn/input_widening.hpp"
-#include "learn/per_context_reward.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/networks/archive_util.hpp"
+#include "learn/networks/input_widening.hpp"
+#include "learn/rewards/per_context_reward.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
 

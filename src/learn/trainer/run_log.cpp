@@ -1,4 +1,4 @@
-#include "learn/run_log.hpp"
+#include "learn/trainer/run_log.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "learn/train_bench.hpp"
+#include "learn/trainer/train_bench.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include "core/stopwatch.hpp"
 #include "core/worker_pool.hpp"
 #include "env/env_factory.hpp"
-#include "learn/trainer.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic {
 

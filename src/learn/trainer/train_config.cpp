@@ -1,4 +1,4 @@
-#include "learn/train_config.hpp"
+#include "learn/trainer/train_config.hpp"
 
 #include <algorithm>
 #include <optional>

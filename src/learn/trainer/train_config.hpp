@@ -73,10 +73,10 @@ struct NormalizeConfig {
   bool rewards = false;  // divide rewards by the running std of discounted returns (seed 002)
 };
 
-// Seed 003's adaptive state initialisation (learn/adaptive_init.hpp).
+// Seed 003's adaptive state initialisation (learn/imitation/adaptive_init.hpp).
 struct AdaptiveInitConfig {
   int components = 10;        // k (seed 003 compares 5, 10, 20)
-  double step = 0.1;          // natural-gradient step (learn/adaptive_init.hpp)
+  double step = 0.1;          // natural-gradient step (learn/imitation/adaptive_init.hpp)
   int batch_episodes = 2000;  // episodes per gradient step
   double std_scale = 1.0;     // initial sigma = the clip's sample std * std_scale
   double min_std = 1e-3;

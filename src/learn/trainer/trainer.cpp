@@ -1,4 +1,4 @@
-#include "learn/trainer.hpp"
+#include "learn/trainer/trainer.hpp"
 
 #include <ATen/Parallel.h>
 #include <dlfcn.h>
@@ -14,11 +14,11 @@
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
 #include "env/context_env.hpp"
-#include "learn/advantage.hpp"
-#include "learn/adversarial_reward.hpp"
-#include "learn/per_context_reward.hpp"
-#include "learn/runtime_export.hpp"
-#include "learn/trainer_impl.hpp"
+#include "learn/ppo/advantage.hpp"
+#include "learn/rewards/adversarial_reward.hpp"
+#include "learn/rewards/per_context_reward.hpp"
+#include "learn/networks/runtime_export.hpp"
+#include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
 

@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "env/env_factory.hpp"
-#include "learn/demonstrations.hpp"
-#include "learn/rollout.hpp"
-#include "learn/run_log.hpp"
-#include "learn/train_config.hpp"
+#include "learn/imitation/demonstrations.hpp"
+#include "learn/ppo/rollout.hpp"
+#include "learn/trainer/run_log.hpp"
+#include "learn/trainer/train_config.hpp"
 
 namespace mimic {
 
@@ -93,7 +93,7 @@ class Trainer {
   // Beside it, the torch-free runtime's networks.mimic (write_runtime_networks).
   void export_model(const std::filesystem::path& path);
   // The policy, value network and observation normaliser in the runtime's own format
-  // (learn/runtime_export.hpp, docs/runtime.md), atomically.
+  // (learn/networks/runtime_export.hpp, docs/runtime.md), atomically.
   void write_runtime_networks(const std::filesystem::path& path) const;
   std::string runtime_networks() const;  // the same file's bytes
   // Averages the policy's weights with those of other checkpoints of the same config (run

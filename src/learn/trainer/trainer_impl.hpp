@@ -4,11 +4,11 @@
 #include <random>
 
 #include "env/env_factory.hpp"
-#include "learn/adaptive_init.hpp"
-#include "learn/collector.hpp"
-#include "learn/ppo.hpp"
-#include "learn/reward_source.hpp"
-#include "learn/trainer.hpp"
+#include "learn/imitation/adaptive_init.hpp"
+#include "learn/ppo/collector.hpp"
+#include "learn/ppo/ppo.hpp"
+#include "learn/rewards/reward_source.hpp"
+#include "learn/trainer/trainer.hpp"
 
 namespace mimic {
 
