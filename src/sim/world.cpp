@@ -275,10 +275,12 @@ Vec3 World::centre_of_mass() const {
   return Vec3(d_->subtree_com[3 * root], d_->subtree_com[3 * root + 1], d_->subtree_com[3 * root + 2]);
 }
 
-std::vector<bool> World::ground_contacts() const {
+std::vector<bool> World::ground_contacts() const { return contacts_with_world(d_); }
+
+std::vector<bool> World::contacts_with_world(const mjData* d) const {
   std::vector<bool> touching(ch_.skeleton.joints.size(), false);
-  for (int c = 0; c < d_->ncon; ++c) {
-    const int other = body_against_world(m_, d_->contact[c]);
+  for (int c = 0; c < d->ncon; ++c) {
+    const int other = body_against_world(m_, d->contact[c]);
     for (std::size_t j = 0; j < body_.size(); ++j)
       if (other >= 0 && body_[j] == other) touching[j] = true;
   }
@@ -295,13 +297,7 @@ std::vector<bool> World::ground_contacts_of(const Pose& pose, double gap) const 
   write_qpos(ch_.skeleton, qpos_, lowered, s);
   mj_kinematics(m_, s);
   mj_collision(m_, s);
-  std::vector<bool> touching(ch_.skeleton.joints.size(), false);
-  for (int c = 0; c < s->ncon; ++c) {
-    const int other = body_against_world(m_, s->contact[c]);
-    for (std::size_t j = 0; j < body_.size(); ++j)
-      if (other >= 0 && body_[j] == other) touching[j] = true;
-  }
-  return touching;
+  return contacts_with_world(s);
 }
 
 double World::ground_penetration() const {

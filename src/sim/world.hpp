@@ -89,6 +89,8 @@ class World {
  private:
   void init(const std::string& mjcf);
   void apply_pd();
+  // Per joint: does its body touch a world-fixed geom in `d`'s contacts?
+  std::vector<bool> contacts_with_world(const mjData_* d) const;
   void set_targets(const std::vector<Quat>& rot);
 
   CharacterModel ch_;
