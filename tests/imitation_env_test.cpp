@@ -714,6 +714,11 @@ TEST(ImitationEnv, MaxDriftNeedsMocapStarts) {
   EXPECT_NE(message.find("test.yaml:2"), std::string::npos) << message;
   EXPECT_NE(message.find("'env.max_drift'"), std::string::npos) << message;
   EXPECT_NE(factory_error(r, "{name: imitation, max_drift: -1}").find("max_drift"), std::string::npos);
+  // fall_height measures against a reference, which the imitation environment has not: an error,
+  // not a key that silently does nothing.
+  const std::string no_reference = factory_error(r, "{name: imitation,\n fall_height: 0.5}");
+  EXPECT_NE(no_reference.find("test.yaml:2"), std::string::npos) << no_reference;
+  EXPECT_NE(no_reference.find("'env.fall_height'"), std::string::npos) << no_reference;
 }
 
 namespace {

@@ -113,6 +113,8 @@ CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& c
   const Skeleton& sk = ch.skeleton;
   if (reference_ && reference_->skeleton.num_joints() != sk.num_joints())
     throw Error("reference clip '" + reference_->name + "' does not fit character '" + ch.name + "'");
+  if (cfg.fall_height > 0 && !reference_)
+    throw KeyError("fall_height", "is a fraction of the reference clip's root height: this environment tracks no reference (0: off)");
   for (const Joint& j : sk.joints) {
     if (j.type == JointType::Spherical) action_size_ += cfg.action_mode == ActionMode::AxisAngle ? 3 : 4;
     if (j.type == JointType::Revolute) action_size_ += 1;
