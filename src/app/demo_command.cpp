@@ -167,8 +167,9 @@ void add_demo_command(CLI::App& app) {
       for (const char* skill : {"walk", "run", "kick", "punch"}) {
         const auto model = std::filesystem::path(kSourceDir) / "models" / best_model(skill);
         if (!std::filesystem::exists(model / "networks.mimic")) continue;
-        const Clip reference =
-            load_deepmimic_motion(data / ("deepmimic/motions/humanoid3d_" + std::string(skill) + ".txt"), humanoid.skeleton);
+        const Clip reference = std::string(skill) == "walk" ? walk_clip
+                                                             : load_deepmimic_motion(data / ("deepmimic/motions/humanoid3d_" + std::string(skill) + ".txt"),
+                                                                                     humanoid.skeleton);
         const std::shared_ptr<const Skill> policy = run_skill(model);
         const std::string line = "pretrained  " + model.filename().string() + ": " + imitation_line(*policy, *trials, &reference);
         fmt::print("{}\n", line);

@@ -75,8 +75,6 @@ MjcfOptions model_options(const Terrain& terrain, const CharacterEnvConfig& cfg)
 Terrain make_terrain(const TerrainSpec& spec) {
   try {
     return Terrain(spec);
-  } catch (const KeyError&) {
-    throw;
   } catch (const Error& e) {
     throw KeyError("terrain", e.what());
   }
