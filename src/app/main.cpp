@@ -9,9 +9,11 @@
 #include "app/commands.hpp"
 #include "core/blas_kernel.hpp"
 #include "core/error.hpp"
+#include "learn/trainer/ranks.hpp"
 
-int main(int argc, char** argv) {
-  mimic::pin_blas_kernel(argv);  // the same numbers on every machine (may start the program again)
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"mimic: physics-based character controllers learnt from human motion"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "mimic 0.1.0");
@@ -43,4 +45,23 @@ int main(int argc, char** argv) {
     return 2;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  mimic::pin_blas_kernel(argv);  // the same numbers on every machine (may start the program again)
+  try {
+    mimic::ranks::init(argc, argv);  // under mpirun: one rank of a run (learn/trainer/ranks.hpp)
+  } catch (const mimic::Error& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  // Rank 0 reports the run; the others speak only of their own warnings and errors.
+  if (mimic::ranks::rank() > 0) spdlog::set_level(spdlog::level::warn);
+  const int code = run(argc, argv);
+  // A rank that failed ends them all: the others would wait for it in their next sum.
+  if (code != 0) mimic::ranks::abort_all(code);
+  mimic::ranks::finalize();
+  return code;
 }

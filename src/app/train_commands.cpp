@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "learn/networks/runtime_format.hpp"
+#include "learn/trainer/ranks.hpp"
 #include "learn/trainer/train_bench.hpp"
 #include "learn/trainer/trainer.hpp"
 
@@ -84,6 +85,15 @@ void add_train_commands(CLI::App& app) {
     spdlog::info("{} {} in {} ({} envs, {} threads, {} samples per iteration, input {}, actions {})",
                  args->resume ? "resuming at iteration" : "training from iteration", trainer.iteration(), opts.run_dir.string(),
                  cfg.collect.envs, cfg.collect.threads, cfg.collect.samples, trainer.input_size(), trainer.action_size());
+    if (ranks::many())
+      spdlog::info("{} ranks (mpirun): each collects {} samples an iteration with its own {} environments ({} in all); gradients, normalisers "
+                   "and discriminator updates are combined every step",
+                   ranks::size(), cfg.collect.samples, cfg.collect.envs, static_cast<long long>(cfg.collect.samples) * ranks::size());
+    if (args->resume && trainer.saved_ranks() != ranks::size())
+      spdlog::warn("{} was saved by {} rank(s) and goes on over {}: networks, optimisers and normalisers carry on; each iteration now has {} "
+                   "times the samples, and ranks the checkpoint does not hold start fresh generators",
+                   (opts.run_dir / "checkpoint.pt").string(), trainer.saved_ranks(), ranks::size(),
+                   fmt::format("{:.3g}", static_cast<double>(ranks::size()) / trainer.saved_ranks()));
     if (!args->init_from.empty())
       spdlog::info("weights from {}: policy, value, normalisers and {} of {} reward sources' state{}", args->init_from.string(),
                    trainer.reward_sources_initialised(), cfg.rewards.size(),

@@ -6,6 +6,8 @@
 #include <limits>
 #include <thread>
 
+#include "learn/trainer/rank_sums.hpp"
+
 namespace mimic {
 
 namespace {
@@ -90,6 +92,7 @@ void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats
       if (interrupted_ && interrupted_()) throw Interrupted("stopped during the policy update of iteration " + std::to_string(iteration));
       policy_opt_->zero_grad();
       loss.backward();
+      average_gradients(params, ranks::Channel::policy);
       s.policy_grad_norm = std::max(s.policy_grad_norm, clip_and_check_gradient(params, p.max_grad_norm, "policy", iteration, epoch));
       policy_opt_->step();
       loss_sum += loss.item<double>();
@@ -98,8 +101,9 @@ void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats
       clip_sum += clip_fraction(ratio.detach(), p.clip);
       ++batches;
     }
-    s.policy_loss = loss_sum / batches;
-    s.kl = kl_sum / batches;
+    // Over all ranks: every copy must stop at the same epoch.
+    s.policy_loss = mean_over_ranks(loss_sum / batches, ranks::Channel::policy);
+    s.kl = mean_over_ranks(kl_sum / batches, ranks::Channel::policy);
     s.entropy = ent_sum / batches;
     s.clip_fraction = clip_sum / batches;
     s.policy_epochs = epoch + 1;
@@ -125,6 +129,7 @@ void PpoLearner::update_value(const PpoBatch& b, std::mt19937_64& rng, PpoStats&
       if (interrupted_ && interrupted_()) throw Interrupted("stopped during the value update of iteration " + std::to_string(iteration));
       value_opt_->zero_grad();
       loss.backward();
+      average_gradients(params, ranks::Channel::value);
       value_grad_norm = std::max(value_grad_norm, clip_and_check_gradient(params, p.max_grad_norm, "value", iteration, epoch));
       value_opt_->step();
       loss_sum += loss.item<double>();
@@ -139,7 +144,11 @@ PpoStats PpoLearner::update(const PpoBatch& batch, std::mt19937_64& rng, bool pa
   PpoStats s;
   s.explained_variance = explained_variance(batch.old_value, batch.target);
   PpoBatch b = batch;
-  if (cfg_.ppo.normalize_advantages && b.advantage.size(0) > 1) {
+  if (cfg_.ppo.normalize_advantages && ranks::many()) {
+    // By the moments of every rank's advantages, as one batch would be.
+    const Moments m = moments_over_ranks(b.advantage.unsqueeze(1));
+    b.advantage = (b.advantage - m.mean) / (m.variance.sqrt() + 1e-8);
+  } else if (cfg_.ppo.normalize_advantages && b.advantage.size(0) > 1) {
     const torch::Tensor a = b.advantage;
     b.advantage = (a - a.mean()) / (a.std() + 1e-8);
   }

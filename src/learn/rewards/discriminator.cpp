@@ -9,6 +9,7 @@
 #include "learn/networks/archive_util.hpp"
 #include "learn/ppo/divergence.hpp"
 #include "learn/networks/input_widening.hpp"
+#include "learn/trainer/rank_sums.hpp"
 
 namespace mimic {
 
@@ -93,9 +94,11 @@ void Discriminator::set_statistics(const torch::Tensor& policy) {
     return std::pair{mean, x.size(0) > 1 ? x.var(0, /*unbiased=*/true) : torch::zeros_like(mean)};
   };
   auto [mean, var] = moments(expert_);
-  if (policy.defined() && policy.size(0) > 0) {
+  // The policy's part over every rank's samples (the expert's is the same on every rank).
+  const Moments over_ranks = ranks::many() && policy.defined() ? moments_over_ranks(policy) : Moments{};
+  if (over_ranks.count > 0 || (!ranks::many() && policy.defined() && policy.size(0) > 0)) {
     // Moments of the equal mixture: within-part variances averaged plus the spread of the means.
-    const auto [policy_mean, policy_var] = moments(policy);
+    const auto [policy_mean, policy_var] = ranks::many() ? std::pair{over_ranks.mean, over_ranks.variance} : moments(policy);
     var = 0.5 * (var + policy_var) + 0.25 * (mean - policy_mean).square();
     mean = 0.5 * (mean + policy_mean);
   }
@@ -131,7 +134,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
     throw Error("discriminator: policy features have the wrong width");
   const std::int64_t n_new = policy.size(0);
   DiscriminatorStats s;
-  if (n_new == 0) return s;
+  if (n_new == 0 && !ranks::many()) return s;  // over several ranks this one still takes part in the sums
   // n rows of `from`, drawn with replacement.
   auto draw = [&](const torch::Tensor& from, std::int64_t n) {
     std::uniform_int_distribution<std::int64_t> pick(0, from.size(0) - 1);
@@ -141,7 +144,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
   };
   auto expert_batch = [&](std::int64_t n) { return draw(expert_, n); };
   const bool with_mismatched = cfg_.mismatched > 0 && mismatched_.size(0) > 0;
-  {
+  if (n_new > 0) {
     torch::NoGradGuard no_grad;
     const torch::Tensor p = forward(policy), e = forward(expert_batch(n_new));
     s.expert_accuracy = (e > 0).to(torch::kFloat32).mean().item<double>();
@@ -157,7 +160,9 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
   replay_ = cfg_.replay > 0 ? torch::cat({replay_, policy}).slice(0, std::max<std::int64_t>(0, replay_.size(0) + n_new - cfg_.replay))
                             : policy;
   if (cfg_.standardise == "mixture") set_statistics(replay_);
-  const std::int64_t pool = replay_.size(0), per_epoch = std::min(pool, n_new);
+  // Every rank takes the same number of steps (a rank's share of a context's samples can differ).
+  const std::int64_t pool = replay_.size(0);
+  const auto per_epoch = static_cast<std::int64_t>(ranks::minimum(static_cast<double>(std::min(pool, n_new))));
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   int steps = 0;
   for (int epoch = 0; epoch < cfg_.epochs; ++epoch) {
@@ -199,6 +204,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
       }
       optimizer_->zero_grad();
       loss.backward();
+      average_gradients(net_->parameters(), ranks::Channel::discriminator);
       optimizer_->step();
       ++steps;
     }

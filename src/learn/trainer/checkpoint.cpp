@@ -12,6 +12,7 @@
 #include "learn/networks/archive_util.hpp"
 #include "learn/networks/input_widening.hpp"
 #include "learn/rewards/per_context_reward.hpp"
+#include "learn/trainer/ranks.hpp"
 #include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
@@ -110,6 +111,11 @@ std::string serialize_checkpoint(const Trainer::Impl& t) {
   const auto env_states = t.collector->rng_states();
   rngs.write("envs", torch::tensor(static_cast<std::int64_t>(env_states.size())));
   for (std::size_t i = 0; i < env_states.size(); ++i) rngs.write("env" + std::to_string(i), bytes_tensor(env_states[i]));
+  if (ranks::many()) {  // every rank's generators, in rank 0's file (the others' copy is not written)
+    const std::vector<std::string> all = ranks::gather(generator_state(t));
+    rngs.write("ranks", torch::tensor(static_cast<std::int64_t>(ranks::size())));
+    for (std::size_t k = 1; k < all.size(); ++k) rngs.write("rank" + std::to_string(k), bytes_tensor(all[k]));
+  }
   a.write("rng", rngs);
   for (std::size_t i = 0; i < t.rewards.size(); ++i) {
     OutputArchive s;
@@ -312,6 +318,12 @@ void read_checkpoint(Trainer::Impl& t, const std::filesystem::path& path) {
     std::vector<std::string> env_states(static_cast<std::size_t>(get(rngs, "envs").item<std::int64_t>()));
     for (std::size_t i = 0; i < env_states.size(); ++i) env_states[i] = tensor_bytes(get(rngs, "env" + std::to_string(i)));
     t.collector->set_rng_states(env_states);
+    torch::Tensor saved_ranks, own;
+    t.saved_ranks = rngs.try_read("ranks", saved_ranks) ? static_cast<int>(saved_ranks.item<std::int64_t>()) : 1;
+    if (ranks::rank() > 0) {
+      if (t.saved_ranks == ranks::size() && rngs.try_read("rank" + std::to_string(ranks::rank()), own)) set_generator_state(t, tensor_bytes(own));
+      else reseed_generators(t);
+    }
     a.read("reward_sources", sources);
     for (std::size_t i = 0; i < t.rewards.size(); ++i) {
       InputArchive s;

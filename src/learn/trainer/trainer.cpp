@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -18,6 +19,7 @@
 #include "learn/rewards/adversarial_reward.hpp"
 #include "learn/rewards/per_context_reward.hpp"
 #include "learn/networks/runtime_export.hpp"
+#include "learn/trainer/rank_sums.hpp"
 #include "learn/trainer/trainer_impl.hpp"
 
 namespace mimic {
@@ -37,8 +39,14 @@ void single_threaded_math() {
 Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std::move(o)) {
   single_threaded_math();
   torch::manual_seed(cfg.seed);
-  noise_rng.seed(cfg.seed * 2 + 1);
-  shuffle_rng.seed(cfg.seed * 2 + 2);
+  const std::uint64_t seed = rank_seed(cfg.seed);
+  noise_rng.seed(seed * 2 + 1);
+  shuffle_rng.seed(seed * 2 + 2);
+  if (ranks::many() && cfg.collect.mode == "episodes")
+    throw Error(cfg.source + ": 'collect.mode: episodes' gives each rank a different number of samples; over several ranks (mpirun) collect by "
+                "'collect.samples'");
+  if (ranks::many() && cfg.init.kind == "adaptive")
+    throw Error(cfg.source + ": 'init: {kind: adaptive}' learns its start distribution in one process; it does not run over several ranks (mpirun)");
   if (opts.env_factory) {
     factory = opts.env_factory;
   } else {
@@ -57,7 +65,7 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
       return std::unique_ptr<Env>(std::make_unique<AdaptiveInitEnv>(inner(), dist, gamma));
     };
   }
-  collector = std::make_unique<Collector>(collect_factory, cfg.collect.envs, cfg.collect.threads, cfg.policy.net.history, cfg.seed);
+  collector = std::make_unique<Collector>(collect_factory, cfg.collect.envs, cfg.collect.threads, cfg.policy.net.history, seed);
   if (cfg.value.history != cfg.policy.net.history)
     throw Error(cfg.source + ": 'value.history' (" + std::to_string(cfg.value.history) + ") must equal 'policy.history' (" +
                 std::to_string(cfg.policy.net.history) + "): both see the same input");
@@ -83,7 +91,7 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   discounted_return.assign(static_cast<std::size_t>(cfg.collect.envs), 0.0);
   RewardSourceContext context;
   context.config_source = cfg.source;
-  context.seed = cfg.seed;
+  context.seed = seed;
   {
     const std::unique_ptr<Env> probe = factory();
     context.frame_size = probe->observation_size();
@@ -93,7 +101,8 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   }
   for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, context));
   if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(iteration + 1, n); });
-  if (opts.stop_requests) {
+  if (opts.stop_requests && !ranks::many()) {
+    // (Over several ranks a stop is agreed between iterations: Trainer::run.)
     // Collection and learning stop within a step or a minibatch of a request (Trainer::run).
     auto requested = [stops = opts.stop_requests] { return stops() > 0; };
     collector->set_interrupt(requested);
@@ -125,7 +134,7 @@ void Trainer::Impl::compute_rewards(Rollout& r) {
       returns.push_back(g);
       if (r.ended[static_cast<std::size_t>(i)]) g = 0.0;
     }
-  return_norm.update(Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(returns.data(), static_cast<Eigen::Index>(returns.size()), 1)));
+  update_over_ranks(return_norm, Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(returns.data(), static_cast<Eigen::Index>(returns.size()), 1)));
   const double scale = 1.0 / std::sqrt(return_norm.variance()[0] + 1e-8);
   for (double& x : r.reward) x *= scale;
 }
@@ -183,27 +192,34 @@ IterationMetrics Trainer::Impl::iterate() {
     }
   }
   if (cfg.normalize.observations)
-    obs_norm.update(Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(r.raw_input.data(), r.size(), r.input_size)));
+    update_over_ranks(obs_norm, Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(r.raw_input.data(), r.size(), r.input_size)));
   const double learn_seconds = learning.seconds();
 
   ++iteration;
-  samples += r.size();
+  // Samples, episodes and rewards of every rank (the run's, not one process's).
+  const EpisodeStats ep = collector->take_episode_stats();
+  std::array<double, 6> totals{static_cast<double>(r.size()), static_cast<double>(ep.returns.size()),
+                               std::accumulate(ep.returns.begin(), ep.returns.end(), 0.0),
+                               static_cast<double>(std::accumulate(ep.lengths.begin(), ep.lengths.end(), 0LL)), static_cast<double>(ep.failures),
+                               std::accumulate(r.reward.begin(), r.reward.end(), 0.0)};
+  ranks::sum(totals);
+  const auto [rollout_samples, episodes, return_sum, length_sum, failures, reward_sum] = totals;
+  samples += static_cast<long long>(rollout_samples);
   const double seconds = iteration_time.seconds();
   wall_seconds += seconds;
-  const EpisodeStats ep = collector->take_episode_stats();
   const CollectTimes times = collector->take_times();
 
   IterationMetrics m;
   m.iteration = iteration;
   m.set("samples", static_cast<double>(samples));
   m.set("wall_s", wall_seconds);
-  m.set("samples_per_s", r.size() / seconds);
-  m.set("return", mean_of(ep.returns));
-  std::vector<double> lengths(ep.lengths.begin(), ep.lengths.end());
-  m.set("episode_length", mean_of(lengths));
-  m.set("episodes", static_cast<double>(ep.returns.size()));
-  m.set("failure_rate", ep.returns.empty() ? std::nan("") : static_cast<double>(ep.failures) / static_cast<double>(ep.returns.size()));
-  m.set("reward", mean_of(r.reward));
+  m.set("samples_per_s", rollout_samples / seconds);
+  const double no_value = std::nan("");
+  m.set("return", episodes > 0 ? return_sum / episodes : no_value);
+  m.set("episode_length", episodes > 0 ? length_sum / episodes : no_value);
+  m.set("episodes", episodes);
+  m.set("failure_rate", episodes > 0 ? failures / episodes : no_value);
+  m.set("reward", rollout_samples > 0 ? reward_sum / rollout_samples : no_value);
   m.set("policy_loss", s.policy_loss);
   m.set("value_loss", s.value_loss);
   m.set("kl", s.kl);
@@ -294,8 +310,10 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
   if (resume && !std::filesystem::exists(dir / "checkpoint.pt"))
     throw Error((dir / "checkpoint.pt").string() + ": no checkpoint to resume from");
   if (resume && std::filesystem::exists(dir / "config.yaml")) require_same_config(cfg, dir / "config.yaml");
+  // Over several ranks only rank 0 writes the run's files; the others read its checkpoint to resume.
+  const bool writer = ranks::rank() == 0;
   // What an interrupted atomic write left (a kill in the middle of a checkpoint): never read.
-  if (!dir.empty()) remove_stale_temporaries(dir), remove_stale_temporaries(dir / "snapshots");
+  if (!dir.empty() && writer) remove_stale_temporaries(dir), remove_stale_temporaries(dir / "snapshots");
   // Before the reward sources are built: an exported model's expert files may not travel with it.
   if (resume && with_previous_hint(dir, [&] { return is_exported_checkpoint(dir / "checkpoint.pt"); }))
     throw Error((dir / "checkpoint.pt").string() +
@@ -317,12 +335,12 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
       return true;
     });
     // The count this resume goes on to becomes the run's own, so a later plain --resume keeps it.
-    if (std::filesystem::exists(dir / "config.yaml")) {
+    if (writer && std::filesystem::exists(dir / "config.yaml")) {
       const std::string saved = read_text_file(dir / "config.yaml");
       const std::string updated = with_iterations(saved, (dir / "config.yaml").string(), impl_->cfg.iterations);
       if (updated != saved) write_file_atomic(dir / "config.yaml", updated);
     }
-  } else {
+  } else if (writer) {
     std::filesystem::create_directories(dir);
     // The run's own record of where its weights came from (a comment: resume ignores it).
     std::string origin = init_from.empty() ? "" : "# started from the weights of " + init_from.string() + " (mimic train --init-from)\n";
@@ -334,7 +352,7 @@ Trainer::Trainer(TrainConfig cfg, TrainOptions opts) {
     // With the count this run goes to (an --iterations override), so a plain --resume keeps it.
     write_file_atomic(dir / "config.yaml", with_iterations(origin + text, cfg_source, impl_->cfg.iterations));
   }
-  impl_->log = std::make_unique<RunLog>(dir, impl_->cfg.tensorboard, resume ? impl_->iteration : -1);
+  if (writer) impl_->log = std::make_unique<RunLog>(dir, impl_->cfg.tensorboard, resume ? impl_->iteration : -1);
 }
 
 Trainer::~Trainer() = default;
@@ -345,7 +363,7 @@ IterationMetrics Trainer::iterate() {
   if (impl_->log) impl_->log->write(m);
   if (impl_->opts.on_iteration) impl_->opts.on_iteration(m);
   const std::filesystem::path& dir = impl_->opts.run_dir;
-  if (impl_->cfg.snapshot_every > 0 && m.iteration % impl_->cfg.snapshot_every == 0 && !dir.empty()) {
+  if (impl_->cfg.snapshot_every > 0 && m.iteration % impl_->cfg.snapshot_every == 0 && !dir.empty() && ranks::rank() == 0) {
     std::filesystem::create_directories(dir / "snapshots");
     write_policy_snapshot(*impl_, snapshot_path(dir, m.iteration));
   }
@@ -362,17 +380,19 @@ IterationMetrics Trainer::iterate() {
 }
 
 void Trainer::Impl::save_run_checkpoint(const std::string& bytes) {
-  write_file_atomic_keeping(opts.run_dir / "checkpoint.pt", opts.run_dir / "checkpoint.prev.pt", bytes);
+  if (ranks::rank() == 0) write_file_atomic_keeping(opts.run_dir / "checkpoint.pt", opts.run_dir / "checkpoint.prev.pt", bytes);
   unsaved_checkpoint.clear();
 }
 
 RunEnd Trainer::run() {
   const bool files = !impl_->opts.run_dir.empty();
   // A fresh run stopped in its first iteration still leaves a checkpoint (of iteration 0).
-  if (files && impl_->opts.stop_requests && !std::filesystem::exists(impl_->opts.run_dir / "checkpoint.pt"))
+  if (files && impl_->opts.stop_requests && ranks::any(!std::filesystem::exists(impl_->opts.run_dir / "checkpoint.pt")))
     impl_->unsaved_checkpoint = serialize_checkpoint(*impl_);
   RunEnd end;
-  while (impl_->iteration < impl_->cfg.iterations && !(impl_->opts.stop_requests && impl_->opts.stop_requests() > 0)) {
+  // Over several ranks every rank must stop after the same iteration: a stop is agreed between them.
+  const auto stop_requested = [&] { return ranks::any(impl_->opts.stop_requests && impl_->opts.stop_requests() > 0); };
+  while (impl_->iteration < impl_->cfg.iterations && !stop_requested()) {
     try {
       iterate();
     } catch (const Interrupted& e) {
@@ -387,7 +407,7 @@ RunEnd Trainer::run() {
     impl_->save_run_checkpoint(impl_->unsaved_checkpoint);
   } else if (!end.stopped && impl_->iteration % impl_->cfg.checkpoint_every != 0) {
     impl_->save_run_checkpoint(serialize_checkpoint(*impl_));  // a run not stopped ends with its last iteration saved
-  } else if (!std::filesystem::exists(impl_->opts.run_dir / "checkpoint.pt")) {
+  } else if (ranks::any(!std::filesystem::exists(impl_->opts.run_dir / "checkpoint.pt"))) {
     impl_->save_run_checkpoint(serialize_checkpoint(*impl_));
   }
   return end;
@@ -400,6 +420,7 @@ long long Trainer::policy_parameters() const {
 }
 
 int Trainer::iteration() const { return impl_->iteration; }
+int Trainer::saved_ranks() const { return impl_->saved_ranks; }
 int Trainer::reward_sources_initialised() const { return impl_->sources_from_init; }
 int Trainer::context_discriminators_initialised() const { return impl_->context_discriminators_from_init; }
 int Trainer::contexts_added_by_init() const { return impl_->contexts_added_by_init; }

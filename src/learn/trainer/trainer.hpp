@@ -71,6 +71,8 @@ class Trainer {
   IterationMetrics iterate();
 
   int iteration() const;  // iterations completed
+  // How many ranks (mpirun) trained the checkpoint this run was resumed from; 1 for a fresh run.
+  int saved_ranks() const;
   int reward_sources_initialised() const;  // reward sources loaded from TrainOptions::init_from
   int context_discriminators_initialised() const;  // per-context sources from init_discriminators_from
   // > 0: TrainOptions::init_from was saved without a behaviour context and its networks were

@@ -36,6 +36,7 @@ struct Trainer::Impl {
   int context_discriminators_from_init = 0;  // per-context sources loaded from init_discriminators_from
   int contexts_added_by_init = 0;  // > 0: init_from had no behaviour context; its inputs were widened
   std::vector<std::string> parts_added_by_init;  // observation parts init_from lacked; its inputs were widened
+  int saved_ranks = 1;  // how many ranks trained the checkpoint this run was resumed from
   bool acting_only = false;  // an exported model's state: acts, is not resumed
   std::unique_ptr<RunLog> log;
   // The last completed iteration's checkpoint when it is not on disk yet (with stop_requests).
@@ -58,6 +59,16 @@ struct Trainer::Impl {
   // distillation), sampled actions unless `deterministic`; `seed` seeds starts and noise.
   Demonstrations record(int episodes, bool deterministic, std::uint64_t seed, EpisodeStats& stats);
 };
+
+// Over several ranks (ranks.hpp, rank_state.cpp): the seed of this rank's own generators
+// (environments, action noise, minibatches, the discriminators' draws), the config's on rank 0 so
+// that one process is unchanged (the networks start from the config's seed on every rank: the
+// copies begin identical); this rank's generators as text and back; and fresh ones for the
+// iteration a checkpoint holds, where it does not hold this rank's (saved over another count).
+std::uint64_t rank_seed(std::uint64_t seed);
+std::string generator_state(const Trainer::Impl& t);
+void set_generator_state(Trainer::Impl& t, const std::string& text);
+void reseed_generators(Trainer::Impl& t);
 
 // The learn layer's way in to a trainer's state (the Trainer has no public one).
 struct TrainerAccess {
