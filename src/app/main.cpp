@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <string>
 #include <new>
 
 #include "app/commands.hpp"
@@ -55,6 +56,17 @@ int main(int argc, char** argv) {
     mimic::ranks::init(argc, argv);  // under mpirun: one rank of a run (learn/trainer/ranks.hpp)
   } catch (const mimic::Error& e) {
     spdlog::error("{}", e.what());
+    return 1;
+  }
+  // Only training is one job over several ranks; anything else would run N times over the same files.
+  const std::string command = argc > 1 ? argv[1] : "";
+  const std::string subcommand = argc > 2 ? argv[2] : "";
+  if (mimic::ranks::many() && command != "train" && !(command == "bench" && subcommand == "train")) {
+    if (mimic::ranks::rank() == 0)
+      spdlog::error("`mimic {}` runs in one process; of mimic's commands only `mimic train` and `mimic bench train` run over several ranks "
+                    "(mpirun -np N)",
+                    command);
+    mimic::ranks::finalize();
     return 1;
   }
   // Rank 0 reports the run; the others speak only of their own warnings and errors.

@@ -225,7 +225,7 @@ void add_train_commands(CLI::App& app) {
       args->bench.config_text = read_config_file(args->bench_config);
     }
     const std::vector<TrainBenchResult> results = run_train_benchmark(args->bench, [](const std::string& line) { spdlog::info("{}", line); });
-    fmt::print("{}", format_train_benchmark(args->bench, results));
+    if (ranks::rank() == 0) fmt::print("{}", format_train_benchmark(args->bench, results));
   });
 }
 

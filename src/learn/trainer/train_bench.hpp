@@ -20,9 +20,10 @@ struct TrainBenchOptions {
 };
 
 struct TrainBenchResult {
+  int ranks = 1;                    // processes of the run (mpirun -np), each with `threads` workers
   int threads = 0;
-  double sim_only_steps_per_s = 0;  // random PD targets, resets on falls
-  double train_samples_per_s = 0;   // end to end
+  double sim_only_steps_per_s = 0;  // random PD targets, resets on falls; all ranks together
+  double train_samples_per_s = 0;   // end to end, all ranks together
   double share_simulation = 0, share_inference = 0, share_learning = 0;
   double seconds = 0;               // timed wall time
 };
@@ -30,7 +31,8 @@ struct TrainBenchResult {
 // Needs the shared data (humanoid3d and its walk); Error naming what is missing otherwise.
 std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
                                                   const std::function<void(const std::string&)>& progress = {});
-// A readable table (Markdown) with the per-core figures and the scaling from 1 thread.
+// A readable table (Markdown) with the per-core figures, end to end over the simulation-only rate, and
+// the scaling from 1 thread.
 std::string format_train_benchmark(const TrainBenchOptions& opts, const std::vector<TrainBenchResult>& results);
 // The YAML config the benchmark trains with.
 std::string train_benchmark_config(const TrainBenchOptions& opts, int threads);
