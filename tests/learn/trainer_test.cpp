@@ -168,6 +168,54 @@ TEST(Trainer, ResumesAfterAKillInTheMiddleOfAnIterationAsIfNeverKilled) {
   EXPECT_EQ(event_files, 2);
 }
 
+// collect.overlap: iteration k+1's rollout is collected with iteration k's policy while it
+// learns. The first iteration is the same as without (nothing to overlap yet), the second differs
+// (its rollout comes from the policy before the first update); a seed gives the same numbers every
+// time; and a run killed mid-way resumes from its checkpoint exactly as the whole run went, since
+// no collection runs ahead across a checkpoint.
+TEST(Trainer, OverlappedCollectionLagsOneIterationRepeatsAndResumesExactly) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const auto overlapped = [](int iterations, int checkpoint_every) {
+    std::string text = walker_config(iterations, 1, checkpoint_every);
+    return text.replace(text.find("samples: 1024}"), 14, "samples: 1024, overlap: true}");
+  };
+  {
+    Trainer a(config(overlapped(4, 100))), b(config(overlapped(4, 100))), sync(config(walker_config(4, 1)));
+    const auto first = metrics_without_time(a.iterate());
+    EXPECT_EQ(first, metrics_without_time(b.iterate()));
+    EXPECT_EQ(first, metrics_without_time(sync.iterate()));
+    const auto second = metrics_without_time(a.iterate());
+    EXPECT_EQ(second, metrics_without_time(b.iterate()));
+    EXPECT_NE(second, metrics_without_time(sync.iterate()));
+    EXPECT_EQ(metrics_without_time(a.iterate()), metrics_without_time(b.iterate()));
+  }
+  const auto whole = test::temp_dir("trainer_overlap_whole"), killed = test::temp_dir("trainer_overlap_killed");
+  const std::string text = overlapped(7, 3);
+  {
+    TrainOptions o;
+    o.run_dir = whole;
+    Trainer(config(text), o).run();
+  }
+  // Killed while iteration 5's rollout is collected beside iteration 4's learning.
+  EXPECT_EXIT(
+      {
+        TrainOptions o;
+        o.run_dir = killed;
+        o.step_hook = [](int iteration, int samples) {
+          if (iteration == 5 && samples >= 512) std::_Exit(9);
+        };
+        Trainer(config(text), o).run();
+      },
+      testing::ExitedWithCode(9), "");
+  TrainOptions o;
+  o.run_dir = killed;
+  o.resume = true;
+  Trainer resumed(config(text), o);
+  EXPECT_EQ(resumed.iteration(), 3);
+  resumed.run();
+  EXPECT_EQ(deterministic_columns(read_metrics_csv(whole / "metrics.csv")), deterministic_columns(read_metrics_csv(killed / "metrics.csv")));
+}
+
 // A stop request (Ctrl-C, SIGTERM) ends the run within one collection step or one learning
 // minibatch, wherever it comes, and the checkpoint holds the last completed iteration, resumable.
 TEST(Trainer, AStopEndsTheRunWithinAStepOrAMinibatchAndSavesTheLastCompletedIteration) {

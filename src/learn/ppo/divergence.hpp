@@ -5,6 +5,7 @@
 // PPO update moves the policy by a KL of 0.001-0.1; weights stay within tens; docs/reliability.md).
 #include <torch/torch.h>
 
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -21,6 +22,7 @@ inline constexpr double kMaxKl = 100.0;          // nats per sample between cons
 inline constexpr double kMaxWeight = 1e6;        // any parameter of any network, in magnitude
 inline constexpr double kMinLogStd = -20.0;      // the policy's log sigma (an action noise of 2e-9 ...
 inline constexpr double kMaxLogStd = 10.0;       // ... to 2e4 action units)
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();  // check_diverged's "no bound"
 inline constexpr const char* kStopping = "stopping without saving (the last checkpoint is kept)";
 }  // namespace divergence
 

@@ -36,19 +36,19 @@ std::vector<torch::Tensor> minibatches(std::int64_t n, int size, std::mt19937_64
   return out;
 }
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using divergence::kUnbounded;
 
 std::string at_epoch(int iteration, int epoch) { return "iteration " + std::to_string(iteration) + ", epoch " + std::to_string(epoch + 1); }
 
 void check_finite(const torch::Tensor& loss, const char* what, int iteration, int epoch) {
-  check_diverged(loss.item<double>(), -kInf, kInf, at_epoch(iteration, epoch), std::string("the ") + what + " loss");
+  check_diverged(loss.item<double>(), -kUnbounded, kUnbounded, at_epoch(iteration, epoch), std::string("the ") + what + " loss");
 }
 
 // The gradient's norm over `params` (clipped to `max_norm` when that is > 0); TrainingDiverged
 // when it is not finite.
 double clip_and_check_gradient(const std::vector<torch::Tensor>& params, double max_norm, const char* what, int iteration, int epoch) {
-  const double norm = torch::nn::utils::clip_grad_norm_(params, max_norm > 0 ? max_norm : kInf);
-  check_diverged(norm, -kInf, kInf, at_epoch(iteration, epoch), std::string("the ") + what + " gradient's norm");
+  const double norm = torch::nn::utils::clip_grad_norm_(params, max_norm > 0 ? max_norm : kUnbounded);
+  check_diverged(norm, -kUnbounded, kUnbounded, at_epoch(iteration, epoch), std::string("the ") + what + " gradient's norm");
   return norm;
 }
 

@@ -14,7 +14,7 @@
 namespace mimic {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using divergence::kUnbounded;
 }  // namespace
 
 torch::Tensor bce_loss(const torch::Tensor& expert_logits, const torch::Tensor& policy_logits) {
@@ -182,7 +182,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
       if (interrupted_ && interrupted_()) throw Interrupted("stopped during the discriminator's update");
       torch::Tensor loss = loss_of(net_->forward(e), fake);
       const std::string step = "discriminator step " + std::to_string(steps + 1);
-      check_diverged(loss.item<double>(), -kInf, kInf, step, "the loss");
+      check_diverged(loss.item<double>(), -kUnbounded, kUnbounded, step, "the loss");
       s.loss += loss.item<double>();
       if (cfg_.gradient_penalty > 0) {
         std::vector<float> alpha(static_cast<std::size_t>(b));
@@ -198,7 +198,7 @@ DiscriminatorStats Discriminator::update(const torch::Tensor& policy_in) {
         const torch::Tensor points = a * e + (1 - a) * p;
         const torch::Tensor penalty =
             cfg_.penalty_of == "sum" ? summed_gradient_penalty(net_, points) : gradient_penalty(net_, points, heads);
-        check_diverged(penalty.item<double>(), -kInf, kInf, step, "the gradient penalty");
+        check_diverged(penalty.item<double>(), -kUnbounded, kUnbounded, step, "the gradient penalty");
         s.penalty += penalty.item<double>();
         loss = loss + cfg_.gradient_penalty * penalty;
       }

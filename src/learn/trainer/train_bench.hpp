@@ -14,6 +14,7 @@ struct TrainBenchOptions {
   int iterations = 3;   // timed, after one warm-up iteration
   int samples = 4096;
   int envs = 16;
+  bool overlap = false;  // each thread count also with collect.overlap (learning beside collection)
   // A training config (YAML text) to time instead of the built-in one; its collect.threads and
   // iterations are replaced, `samples` and `envs` are its own.
   std::string config_text, config_source;
@@ -22,6 +23,7 @@ struct TrainBenchOptions {
 struct TrainBenchResult {
   int ranks = 1;                    // processes of the run (mpirun -np), each with `threads` workers
   int threads = 0;
+  bool overlap = false;             // collect.overlap
   double sim_only_steps_per_s = 0;  // random PD targets, resets on falls; all ranks together
   double train_samples_per_s = 0;   // end to end, all ranks together
   double share_simulation = 0, share_inference = 0, share_learning = 0;

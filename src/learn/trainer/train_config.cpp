@@ -152,6 +152,7 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
   cc.samples = static_cast<int>(col.integer("samples", cc.samples, 1, 100'000'000));
   cc.mode = col.choice("mode", cc.mode, {"horizon", "episodes"});
   cc.episodes = static_cast<int>(col.integer("episodes", cc.episodes, 0, 10'000'000));
+  cc.overlap = col.boolean("overlap", cc.overlap);
   col.finish();
   cc.threads = resolve_threads(cc.threads);
   if (cc.mode == "horizon" && cc.samples < cc.envs)

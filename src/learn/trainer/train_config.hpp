@@ -65,6 +65,10 @@ struct CollectConfig {
   int samples = 4096;           // per iteration (horizon mode: samples / envs steps of each)
   std::string mode = "horizon"; // horizon | episodes
   int episodes = 0;             // episodes mode: complete episodes per iteration
+  // Collect iteration k+1 with iteration k's policy while the learner learns from iteration k's
+  // samples (one iteration of lag, corrected by PPO's ratio to the acting policy): learning no
+  // longer adds to the wall time. Not across a checkpoint, so that a resumed run matches.
+  bool overlap = false;
 };
 
 struct NormalizeConfig {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <numeric>
 
 #include "core/error.hpp"
@@ -45,6 +46,9 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   if (ranks::many() && cfg.collect.mode == "episodes")
     throw Error(cfg.source + ": 'collect.mode: episodes' gives each rank a different number of samples; over several ranks (mpirun) collect by "
                 "'collect.samples'");
+  if (cfg.collect.overlap && cfg.init.kind == "adaptive")
+    throw Error(cfg.source + ": 'collect.overlap' and 'init: {kind: adaptive}' cannot go together: the start distribution learns from the "
+                "episodes the collection is still running");
   if (ranks::many() && cfg.init.kind == "adaptive")
     throw Error(cfg.source + ": 'init: {kind: adaptive}' learns its start distribution in one process; it does not run over several ranks (mpirun)");
   if (opts.env_factory) {
@@ -100,7 +104,7 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
     context.layout = layout;
   }
   for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, context));
-  if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(iteration + 1, n); });
+  if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(collecting_iteration, n); });
   if (opts.stop_requests && !ranks::many()) {
     // (Over several ranks a stop is agreed between iterations: Trainer::run.)
     // Collection and learning stop within a step or a minibatch of a request (Trainer::run).
@@ -173,14 +177,32 @@ PpoBatch Trainer::Impl::make_batch(const Rollout& r) const {
   return b;
 }
 
+Trainer::Impl::Collected Trainer::Impl::collect(int for_iteration, GaussianPolicy& policy, ValueNet& value, const RunningNormalizer& norm) {
+  collecting_iteration = for_iteration;
+  Collected c;
+  c.rollout = cfg.collect.mode == "episodes"
+                  ? collector->collect_episodes(cfg.collect.episodes, policy, value, norm, noise_rng)
+                  : collector->collect_steps(std::max(1, cfg.collect.samples / cfg.collect.envs), policy, value, norm, noise_rng);
+  c.episodes = collector->take_episode_stats();
+  c.times = collector->take_times();
+  return c;
+}
+
 IterationMetrics Trainer::Impl::iterate() {
   const Stopwatch iteration_time;
   learner->set_progress(static_cast<double>(iteration) / cfg.iterations);
-  Rollout r = cfg.collect.mode == "episodes"
-                  ? collector->collect_episodes(cfg.collect.episodes, learner->policy(), learner->value(), obs_norm, noise_rng)
-                  : collector->collect_steps(std::max(1, cfg.collect.samples / cfg.collect.envs), learner->policy(), learner->value(),
-                                             obs_norm, noise_rng);
+  Collected collected = prefetched ? std::move(*prefetched) : collect(iteration + 1, learner->policy(), learner->value(), obs_norm);
+  prefetched.reset();
+  Rollout& r = collected.rollout;
   compute_rewards(r);
+  // collect.overlap: the next iteration's rollout is collected with this policy while it learns;
+  // not before a checkpoint or past the end, so that a resumed run goes on as the saving one did.
+  std::future<Collected> next;
+  if (cfg.collect.overlap && (iteration + 1) % cfg.checkpoint_every != 0 && iteration + 1 < cfg.iterations) {
+    if (!acting) acting = std::make_unique<ActingCopy>(collector->input_size(), collector->action_size(), cfg);
+    acting->take(learner->policy(), learner->value(), obs_norm);
+    next = std::async(std::launch::async, [this, ahead = iteration + 2] { return collect(ahead, acting->policy(), acting->value(), acting->norm()); });
+  }
   const Stopwatch learning;
   const PpoStats s = learner->update(make_batch(r), shuffle_rng, cfg.collect.threads > 1, iteration + 1);
   std::vector<std::pair<std::string, double>> source_metrics;
@@ -194,10 +216,11 @@ IterationMetrics Trainer::Impl::iterate() {
   if (cfg.normalize.observations)
     update_over_ranks(obs_norm, Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(r.raw_input.data(), r.size(), r.input_size)));
   const double learn_seconds = learning.seconds();
+  if (next.valid()) prefetched = next.get();
 
   ++iteration;
   // Samples, episodes and rewards of every rank (the run's, not one process's).
-  const EpisodeStats ep = collector->take_episode_stats();
+  const EpisodeStats& ep = collected.episodes;
   std::array<double, 6> totals{static_cast<double>(r.size()), static_cast<double>(ep.returns.size()),
                                std::accumulate(ep.returns.begin(), ep.returns.end(), 0.0),
                                static_cast<double>(std::accumulate(ep.lengths.begin(), ep.lengths.end(), 0LL)), static_cast<double>(ep.failures),
@@ -207,7 +230,7 @@ IterationMetrics Trainer::Impl::iterate() {
   samples += static_cast<long long>(rollout_samples);
   const double seconds = iteration_time.seconds();
   wall_seconds += seconds;
-  const CollectTimes times = collector->take_times();
+  const CollectTimes& times = collected.times;
 
   IterationMetrics m;
   m.iteration = iteration;

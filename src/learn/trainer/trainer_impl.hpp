@@ -1,10 +1,12 @@
 #pragma once
 // The trainer's state, visible to the learn layer, its tests and its benchmark (LibTorch inside).
+#include <atomic>
 #include <optional>
 #include <random>
 
 #include "env/env_factory.hpp"
 #include "learn/imitation/adaptive_init.hpp"
+#include "learn/ppo/acting_copy.hpp"
 #include "learn/ppo/collector.hpp"
 #include "learn/ppo/ppo.hpp"
 #include "learn/rewards/reward_source.hpp"
@@ -42,8 +44,21 @@ struct Trainer::Impl {
   // The last completed iteration's checkpoint when it is not on disk yet (with stop_requests).
   std::string unsaved_checkpoint;
 
+  // A rollout with the episodes that ended and the time it took (collected beside learning with
+  // collect.overlap: `prefetched` is the next iteration's, `acting` the networks it acts with).
+  struct Collected {
+    Rollout rollout;
+    EpisodeStats episodes;
+    CollectTimes times;
+  };
+  std::optional<Collected> prefetched;
+  std::unique_ptr<ActingCopy> acting;
+
   Impl(TrainConfig c, TrainOptions o);
   IterationMetrics iterate();
+  // The rollout of iteration `for_iteration` (1-based: what the step hook reports).
+  Collected collect(int for_iteration, GaussianPolicy& policy, ValueNet& value, const RunningNormalizer& norm);
+  std::atomic<int> collecting_iteration{0};
   // Rewards of the configured sources, weighted and (optionally) scaled, into rollout.reward.
   void compute_rewards(Rollout& r);
   PpoBatch make_batch(const Rollout& r) const;
