@@ -22,6 +22,15 @@ TEST(PpoLoss, ClippedSurrogateTakesThePessimisticTerm) {
   EXPECT_NEAR(v(clipped_surrogate_loss(ratio, adv, 100.0)), -(0.5 - 1.0 + 3.0 - 0.5) / 4, 1e-6);
 }
 
+TEST(PpoLoss, DecoupledSurrogateWeighsEachSampleByProximalOverBehaviourProbability) {
+  // The pessimistic terms as above (0.5, -1, 2.4, -0.8) weighted by (2, 1, 0.5, 0):
+  // 1 - 1 + 1.2 + 0 = 1.2 over 4 samples.
+  const torch::Tensor ratio = t({0.5f, 1.0f, 1.5f, 0.5f}), adv = t({1.f, -1.f, 2.f, -1.f}), w = t({2.f, 1.f, 0.5f, 0.f});
+  EXPECT_NEAR(v(decoupled_surrogate_loss(ratio, w, adv, 0.2)), -1.2 / 4, 1e-6);
+  // Weights of one: the clipped surrogate itself.
+  EXPECT_NEAR(v(decoupled_surrogate_loss(ratio, torch::ones({4}), adv, 0.2)), v(clipped_surrogate_loss(ratio, adv, 0.2)), 1e-7);
+}
+
 TEST(PpoLoss, GaussianLogProbEntropyAndKl) {
   const torch::Tensor mean = torch::zeros({1, 2}), log_std = t({0.f, static_cast<float>(kLn2)}).view({1, 2});
   const torch::Tensor a = t({1.f, 0.f}).view({1, 2});

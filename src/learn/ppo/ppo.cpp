@@ -37,6 +37,7 @@ std::vector<torch::Tensor> minibatches(std::int64_t n, int size, std::mt19937_64
 }
 
 using divergence::kUnbounded;
+constexpr double kMaxBehaviourWeight = 10.0;  // decoupled PPO's proximal over behaviour probability, at most
 
 std::string at_epoch(int iteration, int epoch) { return "iteration " + std::to_string(iteration) + ", epoch " + std::to_string(epoch + 1); }
 
@@ -74,7 +75,13 @@ void PpoLearner::set_progress(double progress) {
 
 void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats& s, int iteration) {
   const PpoConfig& p = cfg_.ppo;
-  const torch::Tensor old_log_prob = gaussian_log_prob(b.action, b.old_mean, b.old_log_std);
+  const torch::Tensor behaviour_log_prob = gaussian_log_prob(b.action, b.old_mean, b.old_log_std);
+  // Decoupled (stale samples): the ratio and the KL to the proximal policy, each sample weighted by
+  // proximal over behaviour probability (bounded: with one iteration of lag it stays near 1).
+  const bool decoupled = b.prox_mean.defined();
+  const torch::Tensor ref_mean = decoupled ? b.prox_mean : b.old_mean, ref_log_std = decoupled ? b.prox_log_std : b.old_log_std;
+  const torch::Tensor old_log_prob = decoupled ? gaussian_log_prob(b.action, ref_mean, ref_log_std) : behaviour_log_prob;
+  const torch::Tensor weight = decoupled ? torch::exp(old_log_prob - behaviour_log_prob).clamp_max(kMaxBehaviourWeight) : torch::Tensor();
   const auto params = policy_->parameters();
   for (int epoch = 0; epoch < p.epochs; ++epoch) {
     double loss_sum = 0, kl_sum = 0, ent_sum = 0, clip_sum = 0;
@@ -84,9 +91,11 @@ void PpoLearner::update_policy(const PpoBatch& b, std::mt19937_64& rng, PpoStats
       const torch::Tensor log_prob = gaussian_log_prob(b.action.index_select(0, idx), mean, log_std);
       const torch::Tensor ratio = torch::exp(log_prob - old_log_prob.index_select(0, idx));
       torch::Tensor adv = b.advantage.index_select(0, idx);
-      const torch::Tensor kl = gaussian_kl(b.old_mean.index_select(0, idx), b.old_log_std.index_select(0, idx), mean, log_std).mean();
+      const torch::Tensor kl = gaussian_kl(ref_mean.index_select(0, idx), ref_log_std.index_select(0, idx), mean, log_std).mean();
       const torch::Tensor entropy = gaussian_entropy(log_std).mean();
-      torch::Tensor loss = clipped_surrogate_loss(ratio, adv, p.clip) - p.entropy * entropy;
+      torch::Tensor loss = (decoupled ? decoupled_surrogate_loss(ratio, weight.index_select(0, idx), adv, p.clip)
+                                      : clipped_surrogate_loss(ratio, adv, p.clip)) -
+                           p.entropy * entropy;
       if (kl_.beta() > 0) loss = loss + kl_.beta() * kl;
       check_finite(loss, "policy", iteration, epoch);
       if (interrupted_ && interrupted_()) throw Interrupted("stopped during the policy update of iteration " + std::to_string(iteration));

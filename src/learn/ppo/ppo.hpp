@@ -22,6 +22,10 @@ struct PpoBatch {
   torch::Tensor advantage;  // [n]
   torch::Tensor target;     // [n] TD(lambda) returns
   torch::Tensor old_value;  // [n]
+  // Samples an older policy collected (collect.overlap): the policy the update starts from, on
+  // the same inputs. Defined, the update is decoupled PPO (ppo_loss.hpp): ratios and the KL are
+  // to it, and each sample is weighted by its probability over the acting policy's.
+  torch::Tensor prox_mean, prox_log_std;  // [n, a]
 };
 
 struct PpoStats {

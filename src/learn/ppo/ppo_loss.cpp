@@ -28,6 +28,13 @@ torch::Tensor clipped_surrogate_loss(const torch::Tensor& ratio, const torch::Te
   return -torch::min(unclipped, clipped).mean();
 }
 
+torch::Tensor decoupled_surrogate_loss(const torch::Tensor& ratio, const torch::Tensor& behaviour_weight, const torch::Tensor& advantage,
+                                       double clip) {
+  const torch::Tensor unclipped = ratio * advantage;
+  const torch::Tensor clipped = torch::clamp(ratio, 1.0 - clip, 1.0 + clip) * advantage;
+  return -(behaviour_weight * torch::min(unclipped, clipped)).mean();
+}
+
 double clip_fraction(const torch::Tensor& ratio, double clip) {
   return ((ratio - 1.0).abs() > clip).to(torch::kFloat64).mean().item<double>();
 }

@@ -15,6 +15,13 @@ torch::Tensor gaussian_kl(const torch::Tensor& old_mean, const torch::Tensor& ol
 
 // -mean(min(r A, clip(r, 1 - eps, 1 + eps) A)): the loss to minimise.
 torch::Tensor clipped_surrogate_loss(const torch::Tensor& ratio, const torch::Tensor& advantage, double clip);
+// The same objective for samples collected by an older policy than the one the update starts
+// from (collect.overlap): the ratio is to that proximal policy, which the clipping keeps the new
+// one near, and each sample is weighted by proximal over behaviour probability (decoupled PPO,
+// Hilton et al. 2021, "Batch size-invariance for policy optimization"):
+// -mean(w min(r A, clip(r, 1 - eps, 1 + eps) A)).
+torch::Tensor decoupled_surrogate_loss(const torch::Tensor& ratio, const torch::Tensor& behaviour_weight, const torch::Tensor& advantage,
+                                       double clip);
 // Fraction of samples whose ratio left [1 - eps, 1 + eps].
 double clip_fraction(const torch::Tensor& ratio, double clip);
 // 0.5 mean (v - target)^2; with clip > 0 the larger of that and the loss of

@@ -1,5 +1,6 @@
 #include "learn/trainer/ranks.hpp"
 
+#include <atomic>
 #include <cstdlib>
 
 #include "core/error.hpp"
@@ -13,6 +14,12 @@ namespace mimic::ranks {
 namespace {
 
 int g_rank = 0, g_size = 1;
+std::atomic<long long> g_sums{0}, g_bytes{0};  // the policy's and the value's threads both count
+
+void count(std::size_t bytes) {
+  ++g_sums;
+  g_bytes += static_cast<long long>(bytes);
+}
 
 // Set by mpirun (Open MPI, and the PMI/PMIx launchers of MPICH and Slurm).
 bool started_by_mpirun() {
@@ -84,8 +91,11 @@ void abort_all(int code) {
 int rank() { return g_rank; }
 int size() { return g_size; }
 
+Traffic traffic() { return {g_sums.load(), g_bytes.load()}; }
+
 void sum(std::span<double> values, Channel channel) {
   if (g_size == 1 || values.empty()) return;
+  count(values.size_bytes());
 #ifdef MIMIC_WITH_MPI
   check_mpi(MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, communicator(channel)), "a sum of doubles");
 #else
@@ -95,6 +105,7 @@ void sum(std::span<double> values, Channel channel) {
 
 void sum(std::span<float> values, Channel channel) {
   if (g_size == 1 || values.empty()) return;
+  count(values.size_bytes());
 #ifdef MIMIC_WITH_MPI
   check_mpi(MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_FLOAT, MPI_SUM, communicator(channel)), "a sum of floats");
 #else
@@ -109,6 +120,7 @@ double sum(double value, Channel channel) {
 
 double minimum(double value) {
   if (g_size == 1) return value;
+  count(sizeof value);
 #ifdef MIMIC_WITH_MPI
   check_mpi(MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, communicator(Channel::statistics)), "a minimum");
 #endif

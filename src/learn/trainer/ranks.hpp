@@ -42,4 +42,11 @@ bool any(bool value);
 // Every rank's `mine`, in rank order, at rank 0; elsewhere empty.
 std::vector<std::string> gather(const std::string& mine);
 
+// What this rank has put into sums over several ranks so far: calls and bytes (each rank's
+// share; what crosses the network depends on the MPI library's algorithm, docs/scaling.md).
+struct Traffic {
+  long long sums = 0, bytes = 0;
+};
+Traffic traffic();
+
 }  // namespace mimic::ranks

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <random>
 
 #include "core/error.hpp"
@@ -86,6 +87,7 @@ std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
     trainer.iterate();  // warm-up: allocations, first normaliser statistics
     double sim = 0, inf = 0, learn = 0;
     long long samples = 0;
+    const ranks::Traffic before = ranks::traffic();
     const Stopwatch clock;
     for (int i = 0; i < opts.iterations; ++i) {
       const IterationMetrics m = trainer.iterate();
@@ -95,6 +97,9 @@ std::vector<TrainBenchResult> run_train_benchmark(const TrainBenchOptions& opts,
       samples = static_cast<long long>(m.get("samples"));
     }
     r.seconds = clock.seconds();
+    const ranks::Traffic after = ranks::traffic();
+    r.sums_per_iteration = static_cast<double>(after.sums - before.sums) / opts.iterations;
+    r.bytes_per_iteration = static_cast<double>(after.bytes - before.bytes) / opts.iterations;
     const long long timed = samples - samples / (opts.iterations + 1);
     r.train_samples_per_s = static_cast<double>(timed) / r.seconds;
     r.share_simulation = sim / r.seconds;
@@ -127,6 +132,11 @@ std::string format_train_benchmark(const TrainBenchOptions& opts, const std::vec
                      r.sim_only_steps_per_s, r.train_samples_per_s, r.train_samples_per_s / r.sim_only_steps_per_s,
                      r.train_samples_per_s / (r.threads * r.ranks), 100 * r.share_simulation, 100 * r.share_inference, 100 * r.share_learning,
                      base > 0 ? fmt::format("{:.2f}x", r.train_samples_per_s / base) : std::string("-"));
+  for (const auto& r : results)
+    if (r.ranks > 1)
+      s += fmt::format("\n{} ranks, {} thread(s){}: each rank put {:.0f} sums of {:.2f} MB in all into every iteration ({:.1f} kB a sum)\n", r.ranks,
+                       r.threads, r.overlap ? ", overlapped" : "", r.sums_per_iteration, r.bytes_per_iteration / 1e6,
+                       r.bytes_per_iteration / std::max(1.0, r.sums_per_iteration) / 1e3);
   return s;
 }
 

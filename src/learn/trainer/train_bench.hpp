@@ -28,6 +28,7 @@ struct TrainBenchResult {
   double train_samples_per_s = 0;   // end to end, all ranks together
   double share_simulation = 0, share_inference = 0, share_learning = 0;
   double seconds = 0;               // timed wall time
+  double sums_per_iteration = 0, bytes_per_iteration = 0;  // over several ranks: what each rank put into sums
 };
 
 // Needs the shared data (humanoid3d and its walk); Error naming what is missing otherwise.

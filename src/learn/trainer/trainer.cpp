@@ -201,10 +201,22 @@ IterationMetrics Trainer::Impl::iterate() {
   if (cfg.collect.overlap && (iteration + 1) % cfg.checkpoint_every != 0 && iteration + 1 < cfg.iterations) {
     if (!acting) acting = std::make_unique<ActingCopy>(collector->input_size(), collector->action_size(), cfg);
     acting->take(learner->policy(), learner->value(), obs_norm);
-    next = std::async(std::launch::async, [this, ahead = iteration + 2] { return collect(ahead, acting->policy(), acting->value(), acting->norm()); });
+    next = std::async(std::launch::async, [this, ahead = iteration + 2] {
+      Collected c = collect(ahead, acting->policy(), acting->value(), acting->norm());
+      c.stale = true;
+      return c;
+    });
   }
   const Stopwatch learning;
-  const PpoStats s = learner->update(make_batch(r), shuffle_rng, cfg.collect.threads > 1, iteration + 1);
+  PpoBatch batch = make_batch(r);
+  if (collected.stale) {
+    // Collected by the previous iteration's policy: the update is decoupled PPO around this one.
+    torch::NoGradGuard no_grad;
+    const auto [mean, log_std] = learner->policy()->forward(batch.input);
+    batch.prox_mean = mean.clone();
+    batch.prox_log_std = log_std.clone();  // (the forward's is a view of the parameter the update changes)
+  }
+  const PpoStats s = learner->update(batch, shuffle_rng, cfg.collect.threads > 1, iteration + 1);
   std::vector<std::pair<std::string, double>> source_metrics;
   for (auto& [w, source] : rewards) {
     try {

@@ -50,6 +50,7 @@ struct Trainer::Impl {
     Rollout rollout;
     EpisodeStats episodes;
     CollectTimes times;
+    bool stale = false;  // collected by the policy before the one that learns from it
   };
   std::optional<Collected> prefetched;
   std::unique_ptr<ActingCopy> acting;
