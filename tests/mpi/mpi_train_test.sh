@@ -3,7 +3,8 @@
 # configs/walker_ci.yaml`. It must learn as the one-process test does (Trainer.WalkerLearnsToMoveForward:
 # the first iteration's return under 20, the last three's mean over 100 and over five times the
 # first); a seed must give the same numbers twice; and a run killed (SIGKILL, mpirun and its ranks)
-# after a checkpoint must resume over two ranks and finish with the numbers of the run never killed.
+# after a checkpoint must resume over two ranks and finish with the numbers of the run never killed;
+# and a run saved by two ranks goes on in one process.
 # Usage: mpi_train_test.sh MIMIC SOURCE_DIR OUT_DIR [MPIRUN]
 set -euo pipefail
 mimic=$1 src=$2 out=$3 mpirun=${4:-mpirun}
@@ -53,4 +54,9 @@ wait $launcher 2>/dev/null || true
 grep -q "resuming at iteration 8" "$out/resumed.log" || { cat "$out/resumed.log"; fail "the resume did not start at iteration 8"; }
 [ "$(column "$out/killed/metrics.csv" return)" = "$(column "$out/whole/metrics.csv" return)" ] ||
   fail "the killed and resumed run's returns differ from the whole run's: $(column "$out/killed/metrics.csv" return | tr '\n' ' ')"
+# Another number of ranks goes on too, and says so: the 2-rank run resumed in one process.
+"$mimic" train --resume -o "$out/whole" --iterations 18 --threads 1 > "$out/one.log" 2>&1 || { cat "$out/one.log"; fail "resume in one process"; }
+grep -q "was saved by 2 rank(s) and goes on over 1" "$out/one.log" || { cat "$out/one.log"; fail "no word that the number of ranks changed"; }
+[ "$(column "$out/whole/metrics.csv" samples | tail -1)" = 69632 ] || fail "65536 + 2 x 2048 samples expected after two iterations in one process"
+
 echo "PASS: 2 ranks learn (return ${returns[0]} -> ${returns[15]}), repeat, and resume after a kill"
