@@ -12,7 +12,6 @@
 #include <numeric>
 
 #include "core/error.hpp"
-#include "core/statistics.hpp"
 #include "core/file_io.hpp"
 #include "core/stopwatch.hpp"
 #include "env/context_env.hpp"
@@ -106,8 +105,8 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
   for (const auto& rs : cfg.rewards) rewards.emplace_back(rs.weight, make_reward_source(rs, context));
   if (opts.step_hook) collector->set_step_hook([this](int n) { opts.step_hook(collecting_iteration, n); });
   if (opts.stop_requests && !ranks::many()) {
-    // (Over several ranks a stop is agreed between iterations: Trainer::run.)
     // Collection and learning stop within a step or a minibatch of a request (Trainer::run).
+    // Over several ranks a stop is agreed between iterations instead, where every rank is.
     auto requested = [stops = opts.stop_requests] { return stops() > 0; };
     collector->set_interrupt(requested);
     learner->set_interrupt(requested);
