@@ -24,6 +24,7 @@
 #include "env/context_env.hpp"
 #include "env/env_factory.hpp"
 #include "learn/imitation/clip_demonstrations.hpp"
+#include "learn/trainer/ranks.hpp"
 #include "learn/trainer/run_log.hpp"
 #include "learn/trainer/trainer.hpp"
 #include "motion/retarget.hpp"
@@ -130,8 +131,9 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   const std::vector<Clip> clips = clips_on_character(a, character);
   const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
   const TrainConfig recipe_cfg = parse_train_config(override_config(recipe.text, recipe_source, a.settings), recipe_source);
-  const long long per_iteration = recipe_cfg.collect.samples;
-  const long long samples = a.samples > 0 ? a.samples : per_iteration * recipe_cfg.iterations;
+  const long long per_iteration = recipe_cfg.collect.samples * ranks::size();  // every rank's (mpirun)
+  // The recipe's budget in samples, however many ranks share it.
+  const long long samples = a.samples > 0 ? a.samples : static_cast<long long>(recipe_cfg.collect.samples) * recipe_cfg.iterations;
   std::vector<std::string> settings{fmt::format("iterations={}", iterations_for(samples, per_iteration)),
                                     fmt::format("seed={}", a.seed)};
   if (a.threads >= 0) settings.push_back(fmt::format("collect.threads={}", resolve_threads(a.threads)));
@@ -177,8 +179,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
 bool train(const ImitateArgs& a) {
   const fs::path config = a.out / "config.yaml";
   TrainConfig cfg = parse_train_config(read_text_file(config), config.string());
-  if (a.resume && a.samples > 0)
-    cfg.iterations = iterations_for(a.samples, cfg.collect.samples);
+  const long long per_iteration = static_cast<long long>(cfg.collect.samples) * ranks::size();  // every rank's (mpirun)
+  if (a.resume && a.samples > 0) cfg.iterations = iterations_for(a.samples, per_iteration);
   if (a.resume && a.threads >= 0) cfg.collect.threads = resolve_threads(a.threads);
   TrainOptions opts;
   opts.run_dir = a.out;
@@ -187,10 +189,10 @@ bool train(const ImitateArgs& a) {
   opts.stop_requests = stop_requests;
   const auto start = std::chrono::steady_clock::now();
   double first_samples = -1;
-  const long long total = static_cast<long long>(cfg.iterations) * cfg.collect.samples;
-  opts.on_iteration = [&, total](const IterationMetrics& m) {
+  const long long total = cfg.iterations * per_iteration;
+  opts.on_iteration = [&, total, per_iteration](const IterationMetrics& m) {
     const double samples = m.get("samples"), elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (first_samples < 0) first_samples = samples - cfg.collect.samples;
+    if (first_samples < 0) first_samples = samples - static_cast<double>(per_iteration);
     const double rate = (samples - first_samples) / std::max(elapsed, 1e-9);
     spdlog::info("iter {:>5}/{}  samples {:>10.0f} ({:4.1f} %)  reward {:6.3f}  return {:8.2f}  elapsed {}  ETA {}", m.iteration,
                  cfg.iterations, samples, 100.0 * samples / static_cast<double>(total), m.get("reward"), m.get("return"),
@@ -246,7 +248,8 @@ fs::path eval_file(const fs::path& run, const fs::path& clip, std::size_t clips)
   return clips == 1 ? run / "eval.json" : run / ("eval_" + clip.stem().string() + ".json");
 }
 
-void write_report(const ImitateArgs& a, bool video) {
+// `processes`: how many ranks trained it (mpirun).
+void write_report(const ImitateArgs& a, bool video, int processes) {
   const MetricsTable t = read_metrics_csv(a.out / "metrics.csv");
   const std::string config_text = read_text_file(a.out / "config.yaml");
   const TrainConfig cfg = parse_train_config(config_text, (a.out / "config.yaml").string());
@@ -264,8 +267,9 @@ void write_report(const ImitateArgs& a, bool video) {
                       made_by, method);
   text += "| | |\n|---|---|\n";
   text += fmt::format("| samples | {:.0f} ({} iteration{} of {}) |\n", samples, t.rows.size(), t.rows.size() == 1 ? "" : "s",
-                      cfg.collect.samples);
-  text += fmt::format("| wall time | {} ({} thread{}) |\n", duration(wall), cfg.collect.threads, cfg.collect.threads == 1 ? "" : "s");
+                      processes > 1 ? fmt::format("{} on each of {} ranks", cfg.collect.samples, processes) : std::to_string(cfg.collect.samples));
+  text += fmt::format("| wall time | {} ({} thread{}{}) |\n", duration(wall), cfg.collect.threads, cfg.collect.threads == 1 ? "" : "s",
+                      processes > 1 ? " a rank" : "");
   for (const fs::path& clip : clips) {
     const EvalSummary e = read_eval_json(eval_file(a.out, clip, clips.size()));
     const std::string of = clips.size() == 1 ? "" : " (" + clip.stem().string() + ")";
@@ -292,19 +296,23 @@ void imitate(const ImitateArgs& a) {
     if (!a.clips.empty()) throw Error("--resume goes on with the run's own clips: give none");
     if (!fs::exists(a.out / "config.yaml") || !fs::exists(a.out / "checkpoint.pt"))
       throw Error(a.out.string() + ": no run to resume (config.yaml and checkpoint.pt); start one without --resume");
-  } else {
-    start_run(a, recipe(a.method));
+  } else if (ranks::rank() == 0) {
+    start_run(a, recipe(a.method));  // (over several ranks, rank 0 writes the run; the others train in it)
   }
+  ranks::barrier();
   bool finished = false;
   try {
     finished = train(a);
   } catch (...) {
     // A new run that failed before its first checkpoint cannot be resumed: leave nothing of it.
     std::error_code ignored;
-    if (!a.resume && !fs::exists(a.out / "checkpoint.pt")) fs::remove_all(a.out, ignored);
+    if (!a.resume && ranks::rank() == 0 && !fs::exists(a.out / "checkpoint.pt")) fs::remove_all(a.out, ignored);
     throw;
   }
-  if (!finished) return;
+  // The model, its evaluation, video and report are rank 0's to make, alone.
+  if (!finished || ranks::rank() > 0) return;
+  const int trained_by = ranks::size();
+  ranks::continue_alone();
   const fs::path model = export_model(a.out);
   // Against each clip: eval.json for one, eval_<clip>.json for several.
   const std::vector<fs::path> clips = clips_of(model);
@@ -327,7 +335,7 @@ void imitate(const ImitateArgs& a) {
     }
   }
   write_curves(a.out);
-  write_report(a, video);
+  write_report(a, video, trained_by);
   spdlog::info("wrote {}: the model, its evaluation, {}curves.png and report.md", a.out.string(), video ? "video.mp4, " : "");
 }
 

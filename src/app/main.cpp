@@ -61,10 +61,10 @@ int main(int argc, char** argv) {
   // Only training is one job over several ranks; anything else would run N times over the same files.
   const std::string command = argc > 1 ? argv[1] : "";
   const std::string subcommand = argc > 2 ? argv[2] : "";
-  if (mimic::ranks::many() && command != "train" && !(command == "bench" && subcommand == "train")) {
+  if (mimic::ranks::many() && command != "train" && command != "imitate" && !(command == "bench" && subcommand == "train")) {
     if (mimic::ranks::rank() == 0)
-      spdlog::error("`mimic {}` runs in one process; of mimic's commands only `mimic train` and `mimic bench train` run over several ranks "
-                    "(mpirun -np N)",
+      spdlog::error("`mimic {}` runs in one process; of mimic's commands only `mimic train`, `mimic imitate` and `mimic bench train` run "
+                    "over several ranks (mpirun -np N)",
                     command);
     mimic::ranks::finalize();
     return 1;

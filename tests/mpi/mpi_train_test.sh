@@ -59,4 +59,16 @@ grep -q "resuming at iteration 8" "$out/resumed.log" || { cat "$out/resumed.log"
 grep -q "was saved by 2 rank(s) and goes on over 1" "$out/one.log" || { cat "$out/one.log"; fail "no word that the number of ranks changed"; }
 [ "$(column "$out/whole/metrics.csv" samples | tail -1)" = 69632 ] || fail "65536 + 2 x 2048 samples expected after two iterations in one process"
 
+# mimic imitate over two ranks: rank 0 writes the run and, after training, the model, its
+# evaluation and report; one iteration of 256 samples on each rank (this tests the pipeline).
+walk=${MIMIC_DATA:-$src/../shared/data}/deepmimic/motions/humanoid3d_walk.txt
+if [ -f "$walk" ]; then
+  "$mpirun" -np 2 --bind-to none "$mimic" imitate "$walk" -o "$out/imitate" --samples 1 --trials 1 --video-seconds 0 --threads 1 \
+    --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2 > "$out/imitate.log" 2>&1 || { cat "$out/imitate.log"; fail "mpirun -np 2 mimic imitate"; }
+  for f in model/networks.mimic eval.json report.md; do [ -f "$out/imitate/$f" ] || fail "mpirun -np 2 mimic imitate wrote no $f"; done
+  grep -q "| samples | 512 (1 iteration of 256 on each of 2 ranks) |" "$out/imitate/report.md" || { cat "$out/imitate/report.md"; fail "the report's samples"; }
+else
+  echo "skipped mimic imitate over two ranks: $walk not found (the shared data)"
+fi
+
 echo "PASS: 2 ranks learn (return ${returns[0]} -> ${returns[15]}), repeat, and resume after a kill"

@@ -35,6 +35,11 @@ bool available();
 void sum(std::span<double> values, Channel channel = Channel::statistics);
 void sum(std::span<float> values, Channel channel);
 double sum(double value, Channel channel = Channel::statistics);
+// Waits until every rank has come here (after rank 0 has written what the others read).
+void barrier();
+// From here on this process works alone, as a run of one rank (rank 0 after training: the
+// export, evaluation and video of `mimic imitate`); the other ranks have finished their part.
+void continue_alone();
 // The smallest of the ranks' values.
 double minimum(double value);
 // Whether any rank says true.
