@@ -187,6 +187,19 @@ Trainer::Impl::Collected Trainer::Impl::collect(int for_iteration, GaussianPolic
   return c;
 }
 
+void Trainer::Impl::refresh_values(Rollout& r) {
+  torch::NoGradGuard no_grad;
+  const torch::Tensor v = learner->value()->forward(torch::from_blob(r.input.data(), {r.size(), r.input_size}, torch::kFloat32)).contiguous();
+  r.value.assign(v.data_ptr<float>(), v.data_ptr<float>() + r.size());
+  // The state after a step is the next sample of the same environment, but after an episode's end
+  // and after the horizon's last step, whose bootstrap values stay the acting copy's (their
+  // inputs are not kept).
+  for (const auto& idx : r.env_steps)
+    for (std::size_t j = 0; j + 1 < idx.size(); ++j)
+      if (!r.ended[static_cast<std::size_t>(idx[j])])
+        r.next_value[static_cast<std::size_t>(idx[j])] = r.value[static_cast<std::size_t>(idx[j + 1])];
+}
+
 IterationMetrics Trainer::Impl::iterate() {
   const Stopwatch iteration_time;
   learner->set_progress(static_cast<double>(iteration) / cfg.iterations);
@@ -207,6 +220,7 @@ IterationMetrics Trainer::Impl::iterate() {
     });
   }
   const Stopwatch learning;
+  if (collected.stale) refresh_values(r);
   PpoBatch batch = make_batch(r);
   if (collected.stale) {
     // Collected by the previous iteration's policy: the update is decoupled PPO around this one.

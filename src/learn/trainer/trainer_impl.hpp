@@ -63,6 +63,9 @@ struct Trainer::Impl {
   // Rewards of the configured sources, weighted and (optionally) scaled, into rollout.reward.
   void compute_rewards(Rollout& r);
   PpoBatch make_batch(const Rollout& r) const;
+  // A rollout collected beside the previous update (collect.overlap): its values, and the
+  // bootstraps that are values of its own samples, from the value network as it is now.
+  void refresh_values(Rollout& r);
   // Gathers the collector's finished ASI episodes in environment order; a gradient step per full batch.
   void update_adaptive_init(IterationMetrics& m);
   // RUN/checkpoint.pt, the one it replaces kept as RUN/checkpoint.prev.pt.
