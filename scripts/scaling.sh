@@ -51,13 +51,19 @@ pairs() {
       names+=("seed $seed$([[ $overlap == true ]] && echo ', overlapped' || echo '')")
     done
   done
-  "$mimic" plot "${runs[@]}" --names "${names[@]}" --smooth 5 --title "$name: return against samples" -o "$out/${name}_return.png"
+  # The return, and the reward per step the learner optimises (the discriminators' for ICCGAN).
+  for y in return reward; do
+    "$mimic" plot "${runs[@]}" --names "${names[@]}" --y $y --smooth 10 --title "$name: $y against samples" -o "$out/${name}_$y.png"
+  done
   for run in "${runs[@]}"; do
-    # The mean return of the last 10 iterations, the samples and the wall time.
+    # Means over iterations: the first and second half of the run, and the last 10.
     awk -F, -v run="$run" 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
-      { r[NR] = $c["return"]; samples = $c["samples"]; wall = $c["wall_s"] }
-      END { for (i = NR - 9; i <= NR; ++i) sum += r[i]; printf "%s: return %.1f (mean of the last 10 iterations), %d samples, %.0f s\n", run, sum / 10, samples, wall }' \
-      "$run/metrics.csv"
+      { r[NR - 1] = $c["return"]; w[NR - 1] = $c["reward"]; samples = $c["samples"]; wall = $c["wall_s"] }
+      END { n = NR - 1; h = int(n / 2)
+            for (i = 1; i <= n; ++i) { if (i <= h) { r1 += r[i]; w1 += w[i] } else { r2 += r[i]; w2 += w[i] } }
+            for (i = n - 9; i <= n; ++i) { rl += r[i]; wl += w[i] }
+            printf "%s: return %.1f / %.1f / %.1f, reward %.3f / %.3f / %.3f (first half / second half / last 10 iterations), %d samples, %.0f s\n",
+                   run, r1 / h, r2 / (n - h), rl / 10, w1 / h, w2 / (n - h), wl / 10, samples, wall }' "$run/metrics.csv"
   done | tee "$out/${name}_summary.txt"
 }
 

@@ -54,6 +54,28 @@ std::vector<double> metrics_without_time(const IterationMetrics& m) {
   return out;
 }
 
+// A run of `text` in `dir` to its end.
+void run_whole(const std::string& text, const std::filesystem::path& dir) {
+  TrainOptions o;
+  o.run_dir = dir;
+  Trainer(config(text), o).run();
+}
+
+// A run of `text` in `dir` killed (no clean-up at all) once iteration `iteration`'s collection
+// has `samples` samples.
+void run_killed(const std::string& text, const std::filesystem::path& dir, int iteration, int samples) {
+  EXPECT_EXIT(
+      {
+        TrainOptions o;
+        o.run_dir = dir;
+        o.step_hook = [iteration, samples](int it, int n) {
+          if (it == iteration && n >= samples) std::_Exit(9);
+        };
+        Trainer(config(text), o).run();
+      },
+      testing::ExitedWithCode(9), "");
+}
+
 // All parameters of a module, flattened, for bitwise comparison.
 std::vector<torch::Tensor> params(const torch::nn::Module& m) {
   std::vector<torch::Tensor> out;
@@ -133,23 +155,10 @@ TEST(Trainer, ResumesAfterAKillInTheMiddleOfAnIterationAsIfNeverKilled) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   const auto whole = test::temp_dir("trainer_whole"), killed = test::temp_dir("trainer_killed");
   const std::string text = walker_config(5, 2, 2);
-  {
-    TrainOptions o;
-    o.run_dir = whole;
-    Trainer(config(text), o).run();
-  }
-  // Killed (no clean-up at all) half-way through iteration 4: the checkpoint of iteration 2 and
-  // the CSV rows of iterations 1-3 are on disk.
-  EXPECT_EXIT(
-      {
-        TrainOptions o;
-        o.run_dir = killed;
-        o.step_hook = [](int iteration, int samples) {
-          if (iteration == 4 && samples >= 512) std::_Exit(9);
-        };
-        Trainer(config(text), o).run();
-      },
-      testing::ExitedWithCode(9), "");
+  run_whole(text, whole);
+  // Killed half-way through iteration 4: the checkpoint of iteration 2 and the CSV rows of
+  // iterations 1-3 are on disk.
+  run_killed(text, killed, 4, 512);
   EXPECT_EQ(read_metrics_csv(killed / "metrics.csv").rows.size(), 3u);
   TrainOptions o;
   o.run_dir = killed;
@@ -191,22 +200,9 @@ TEST(Trainer, OverlappedCollectionLagsOneIterationRepeatsAndResumesExactly) {
   }
   const auto whole = test::temp_dir("trainer_overlap_whole"), killed = test::temp_dir("trainer_overlap_killed");
   const std::string text = overlapped(7, 3);
-  {
-    TrainOptions o;
-    o.run_dir = whole;
-    Trainer(config(text), o).run();
-  }
+  run_whole(text, whole);
   // Killed while iteration 5's rollout is collected beside iteration 4's learning.
-  EXPECT_EXIT(
-      {
-        TrainOptions o;
-        o.run_dir = killed;
-        o.step_hook = [](int iteration, int samples) {
-          if (iteration == 5 && samples >= 512) std::_Exit(9);
-        };
-        Trainer(config(text), o).run();
-      },
-      testing::ExitedWithCode(9), "");
+  run_killed(text, killed, 5, 512);
   TrainOptions o;
   o.run_dir = killed;
   o.resume = true;
