@@ -64,16 +64,12 @@ void run_whole(const std::string& text, const std::filesystem::path& dir) {
 // A run of `text` in `dir` killed (no clean-up at all) once iteration `iteration`'s collection
 // has `samples` samples.
 void run_killed(const std::string& text, const std::filesystem::path& dir, int iteration, int samples) {
-  EXPECT_EXIT(
-      {
-        TrainOptions o;
-        o.run_dir = dir;
-        o.step_hook = [iteration, samples](int it, int n) {
-          if (it == iteration && n >= samples) std::_Exit(9);
-        };
-        Trainer(config(text), o).run();
-      },
-      testing::ExitedWithCode(9), "");
+  TrainOptions o;
+  o.run_dir = dir;
+  o.step_hook = [iteration, samples](int it, int n) {
+    if (it == iteration && n >= samples) std::_Exit(9);
+  };
+  EXPECT_EXIT(Trainer(config(text), o).run(), testing::ExitedWithCode(9), "");
 }
 
 // All parameters of a module, flattened, for bitwise comparison.
