@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
       {"tolerance 1e-5", [](mjModel* m) { m->opt.tolerance = 1e-5; }},
       {"iterations 5", [](mjModel* m) { m->opt.iterations = 5; }},
       {"iterations 2", [](mjModel* m) { m->opt.iterations = 2; }},
-      {"no noslip, MPR tolerance 1e-4", [](mjModel* m) { m->opt.mpr_tolerance = 1e-4; }},
+      {"MPR tolerance 1e-4", [](mjModel* m) { m->opt.mpr_tolerance = 1e-4; }},
       {"CG solver", [](mjModel* m) { m->opt.solver = mjSOL_CG; }},
       {"PGS solver", [](mjModel* m) { m->opt.solver = mjSOL_PGS; }},
       {"elliptic cone", [](mjModel* m) { m->opt.cone = mjCONE_ELLIPTIC; }},
