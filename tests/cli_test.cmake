@@ -212,9 +212,11 @@ file(WRITE ${OUT}/gail.yaml "seed: 2\niterations: 2\nenv: {name: planar_walker}\
 run_ok(train ${OUT}/gail.yaml -o ${OUT}/gail_run)
 file(READ ${OUT}/gail_run/metrics.csv gail_metrics)
 expect_in("${gail_metrics}" "gail_reward,gail_loss,gail_expert_accuracy,gail_policy_accuracy,gail_expert_score,gail_policy_score,gail_penalty")
-run_ok(bench train --config ${OUT}/gail.yaml --threads 1 --iterations 1)
+run_ok(bench train --config ${OUT}/gail.yaml --threads 1 --iterations 1 --overlap)
 expect_in("${LAST_OUT}" "gail.yaml (1 timed iterations)")
-expect_in("${LAST_OUT}" "| 1 | ")
+# One process (rank), one thread, with and without learning beside collection.
+expect_in("${LAST_OUT}" "| 1 | 1 | no | ")
+expect_in("${LAST_OUT}" "| 1 | 1 | yes | ")
 run_fails("--config: File does not exist" bench train --config ${OUT}/no_such.yaml)
 run_fails("--samples excludes --config" bench train --config ${OUT}/gail.yaml --samples 64)
 run_fails("gail.yaml: 'rewards.features': unknown observation part 'knees'" train ${OUT}/gail.yaml -o ${OUT}/gail_run2 --set "rewards.0.features=[knees]")
