@@ -203,6 +203,21 @@ TEST(Projectile, EveryFrameProtocolRecyclesAFixedPool) {
   env3.reset(rng);
   for (int i = 0; i < 10; ++i) env3.step(zero);
   EXPECT_EQ(env3.projectiles()->stats().launched, 4);  // steps 0, 3, 6, 9
+  // every: 0 launches only when asked, from a pool of 4 that the oldest flight gives way in.
+  CharacterEnvConfig asked = cfg;
+  asked.projectiles.every = 0;
+  CharacterEnv env0(humanoid(), asked);
+  ProjectileLauncher& launcher = *env0.projectiles();
+  EXPECT_EQ(launcher.pool_size(), 4);
+  env0.reset(rng);
+  for (int i = 0; i < 10; ++i) env0.step(zero);
+  EXPECT_EQ(launcher.stats().launched, 0);
+  const int k = launcher.launch(env0.world(), launcher.sample_aim(env0.world()), launcher.sample_direction());
+  EXPECT_TRUE(launcher.flying(k));
+  env0.step(zero);
+  EXPECT_EQ(launcher.stats().launched, 1);
+  asked.projectiles.every = -1;
+  EXPECT_THROW(CharacterEnv(humanoid(), asked), Error);
   third.projectiles.target = "tail";
   EXPECT_THROW(CharacterEnv(humanoid(), third), Error);
 }

@@ -128,6 +128,17 @@ class Controller {
   double score(const std::string& skill);
   double value(const std::string& skill);
 
+  // Pushes the character: `force` (world frame, newtons) on its root link through the next
+  // `seconds` (a hand-over carries the rest over). A new push replaces one under way. Throws
+  // mimic::Error for a force that is not finite, seconds < 0 or a skill that is not a character.
+  void push(const Eigen::Vector3d& force, double seconds);
+  // Throws a cube (seed 004's projectiles) at a random point of the character's torso from a
+  // random direction, in the active skill's world; false where that world has no cubes. Skills get
+  // them by Skill::load's env settings: "env.projectiles.enabled=true" and, for cubes only when
+  // thrown, "env.projectiles.every=0" (mass, size and speed are settings too). A cube stays in the
+  // world of the skill that threw it: a hand-over leaves it behind.
+  bool throw_cube();
+
   const std::string& skill() const;  // the active one's name
   const std::vector<std::shared_ptr<const Skill>>& skills() const;
   double control_dt() const;         // seconds per step()

@@ -51,6 +51,8 @@ struct Controller::Impl {
   std::size_t pending = 0;  // the requested skill; == skills.size(): none
   long long waited = 0;     // steps since the request
   int delay_left = 0;       // steps before a request may be granted
+  Eigen::Vector3d push_force = Eigen::Vector3d::Zero();
+  double push_left = 0.0;   // seconds of the push still to come
 
   Env& env() { return *envs[active]; }
   const Skill& skill() const { return *skills[active]; }
@@ -108,6 +110,10 @@ struct Controller::Impl {
     return to->reset(state);
   }
   void hand_over(std::size_t target) {
+    if (pushing) {  // the push goes on in the new world; none of it stays in the old
+      if (CharacterEnv* c = character_of(env())) c->set_pushes(c->config().pushes);
+      pushing = false;
+    }
     const Eigen::VectorXd first = place(target, 0);
     const long long kept = steps;
     active = target;
@@ -116,6 +122,18 @@ struct Controller::Impl {
   }
   // The rule's figure for `target` in the current state.
   double measure(std::size_t target, SwitchRule::By by);
+
+  // Before a step: the push's part of it on the active character's root, beside its own pushes.
+  void apply_push() {
+    CharacterEnv* c = character_of(env());
+    if (!c) return;
+    std::vector<PushSpec> pushes = c->config().pushes;
+    if (push_left > 0) pushes.push_back(PushSpec{c->world().character().skeleton.joints.front().name, push_force, c->elapsed(), std::min(push_left, dt)});
+    if (push_left > 0 || pushing) c->set_pushes(std::move(pushes));
+    pushing = push_left > 0;
+    push_left = std::max(0.0, push_left - dt);
+  }
+  bool pushing = false;  // the active environment holds a push of ours
 
   void stack() {
     const Skill& s = skill();
@@ -149,6 +167,10 @@ Controller::~Controller() = default;
 
 void Controller::reset() {
   Impl& c = *impl_;
+  c.push_left = 0.0;
+  if (c.pushing)
+    if (CharacterEnv* ch = character_of(c.env())) ch->set_pushes(ch->config().pushes);
+  c.pushing = false;
   c.begin(c.env().reset(c.rng));
   c.states.clear();
   c.remember();
@@ -160,6 +182,7 @@ StepInfo Controller::step() {
   Impl& c = *impl_;
   c.stack();
   c.action = c.skill().act(c.input);
+  c.apply_push();
   const mjData* d = c.env().physics_data();
   const double before = d ? d->time : 0.0;
   const StepResult r = c.env().step(c.action);
@@ -214,6 +237,23 @@ double Controller::Impl::measure(std::size_t target, SwitchRule::By by) {
   if (d->transition == "ss" && !own) (void)place(target, 0);  // left in the current state
   if (d->transition == "sa") acted = t.act(Eigen::MatrixXd(fresh.transpose()));
   return d->switch_scores(before, next, acted, -1)[0];
+}
+
+void Controller::push(const Eigen::Vector3d& force, double seconds) {
+  Impl& c = *impl_;
+  if (!force.allFinite() || !(seconds >= 0)) throw Error("push: the force must be finite and the seconds >= 0");
+  if (!character_of(c.env())) throw Error("push: skill '" + c.skill().name() + "' drives no character");
+  c.push_force = force;
+  c.push_left = seconds;
+}
+
+bool Controller::throw_cube() {
+  Impl& c = *impl_;
+  CharacterEnv* character = character_of(c.env());
+  ProjectileLauncher* launcher = character ? character->projectiles() : nullptr;
+  if (!launcher) return false;
+  launcher->launch(character->world(), launcher->sample_aim(character->world()), launcher->sample_direction());
+  return true;
 }
 
 void Controller::switch_to(const std::string& name) {

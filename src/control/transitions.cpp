@@ -4,13 +4,12 @@
 #include <cmath>
 #include <random>
 
+#include "control/play_session.hpp"
 #include "core/error.hpp"
 
 namespace mimic {
 
 namespace {
-
-constexpr int kLyingFrames = 10;
 
 struct Trial {
   bool valid = false, switched = false, succeeded = false, fell = false;
@@ -29,11 +28,8 @@ Trial run_trial(Controller& c, const std::string& from, const std::string& to, i
   // protocol's lying rule). The skills' own episode ends (any elbow touching the floor, a drift
   // from their clip's line) are training's rules, not this test's.
   const double standing = c.root_position().z();
-  int lying = 0;
-  auto down = [&] {
-    lying = c.root_position().z() < 0.5 * standing ? lying + 1 : 0;
-    return lying >= kLyingFrames;
-  };
+  DownRule lying(standing);
+  auto down = [&] { return lying.update(c.root_position().z()); };
   c.request(to);
   const double dt = c.control_dt();
   const int limit = static_cast<int>(std::ceil(o.time_limit_seconds / dt)) + 1;
@@ -47,7 +43,7 @@ Trial run_trial(Controller& c, const std::string& from, const std::string& to, i
     if (!info.dropped.empty() || down()) return t;
   }
   if (!t.switched) return t;
-  lying = 0;
+  lying.restart(standing);
   const int hold = static_cast<int>(std::lround(o.hold_seconds / dt)), last_second = static_cast<int>(std::lround(1.0 / dt));
   double score_sum = 0.0;
   int scored = 0;

@@ -71,7 +71,7 @@ ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader,
   p.size = s.number("size", p.size, 1e-3, 10);
   p.speed = s.number("speed", p.speed, 0, 1e3);
   p.distance = s.number("distance", p.distance, 1e-3, 100);
-  p.every = static_cast<int>(s.integer("every", p.every, 1, 100'000));
+  p.every = static_cast<int>(s.integer("every", p.every, 0, 100'000));  // 0: only on demand (Controller::throw_cube)
   p.target = s.text("target", p.target);
   s.finish();
   return p;

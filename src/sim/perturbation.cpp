@@ -45,15 +45,20 @@ Vec3 park_position(int k) { return Vec3(1000.0 + 2.0 * k, 1000.0, 100.0); }
 std::string cube_name(int k) { return fmt::format("projectile{}", k); }
 
 void check(const ProjectileSpec& s) {
-  if (!(s.mass > 0 && s.size > 0 && s.speed > 0 && s.distance >= s.size && s.linger >= 0) || s.every < 1 || s.pool < 0)
-    throw Error("projectiles: need positive mass, size, speed and every, distance >= size, linger >= 0, pool >= 0");
+  if (!(s.mass > 0 && s.size > 0 && s.speed > 0 && s.distance >= s.size && s.linger >= 0) || s.every < 0 || s.pool < 0)
+    throw Error("projectiles: need positive mass, size and speed, every >= 0 (0: on demand), distance >= size, linger >= 0, pool >= 0");
   if (!(s.min_elevation_deg <= s.max_elevation_deg) || std::abs(s.min_elevation_deg) > 90 || std::abs(s.max_elevation_deg) > 90)
     throw Error("projectiles: need -90 <= min_elevation_deg <= max_elevation_deg <= 90");
 }
 
 }  // namespace
 
+// Cubes launched on demand (every = 0): a few in flight or lingering at once; a launch beyond them
+// takes the oldest.
+constexpr int kOnDemandPool = 4;
+
 int projectile_pool_size(const ProjectileSpec& spec, double control_hz) {
+  if (spec.every == 0) return kOnDemandPool;
   const double life = max_flight(spec) + spec.linger + 2.0 / control_hz;
   return std::max(1, static_cast<int>(std::ceil(life * control_hz / spec.every)) + 1);
 }
@@ -169,7 +174,7 @@ int ProjectileLauncher::launch(World& world, const Vec3& aim, const Vec3& dir) {
 }
 
 void ProjectileLauncher::before_step(World& world) {
-  if (calls_++ % spec_.every != 0) return;
+  if (spec_.every == 0 || calls_++ % spec_.every != 0) return;
   const Vec3 aim = sample_aim(world);
   launch(world, aim, sample_direction());
 }

@@ -41,11 +41,11 @@ struct ProjectileSpec {
   double size = 0.2;              // cube side (m), seed 004
   double speed = 0.2;             // launch speed (m/s), seed 004
   double distance = 0.5;          // launch point to aim point (m, >= size); seed 004 does not say
-  int every = 1;                  // launch every k-th control step; seed 004: every frame
+  int every = 1;                  // launch every k-th control step; seed 004: every frame. 0: only on demand (launch())
   std::string target = "chest";   // the torso link aimed at
   double min_elevation_deg = -15.0, max_elevation_deg = 45.0;  // launch directions (azimuth uniform)
   double linger = 0.5;            // seconds a cube stays in the scene after its flight ends
-  int pool = 0;                   // cubes in the model; 0: enough for every flight plus linger
+  int pool = 0;                   // cubes in the model; 0: enough for every flight plus linger (on demand: 4)
   std::uint64_t seed = 0;         // aim and direction draws (CharacterEnv reseeds on reset(rng))
 };
 
@@ -71,7 +71,7 @@ class ProjectileLauncher {
   // Parks every cube and clears the statistics (call after World::set_state).
   void reset(World& world);
   void reseed(std::uint64_t seed) { rng_.seed(seed); }
-  // Before a control step: launches a cube on every `every`-th call.
+  // Before a control step: launches a cube on every `every`-th call (none when `every` is 0).
   void before_step(World& world);
   // After a control step: ends flights on contact, counts hits, parks cubes past their linger.
   void after_step(World& world);

@@ -1,0 +1,91 @@
+#pragma once
+// An interactive session over one character (what `mimic play` runs, in a window or from a
+// script): skills requested by the user and taken over by the controller's switch rule, pushes
+// and thrown cubes, the down rule, automatic recovery (seed 004 §6: a get-up skill takes over a
+// fallen character, and the skill that was asked for takes it back by the score rule), and a log
+// of what happened. Torch-free, draws nothing.
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mimic/runtime.hpp"
+
+namespace mimic {
+
+// The robustness protocol's rule for a character that is down: its root below `height` times its
+// standing height for `frames` control steps in a row. A crouch stays above it.
+class DownRule {
+ public:
+  DownRule(double standing_height, double height = 0.5, int frames = 10);
+  // One control step's root height; true at the step the character becomes down (once per fall).
+  bool update(double root_height);
+  bool down() const { return lying_ >= frames_; }
+  void restart(double standing_height);
+
+ private:
+  double standing_, height_;
+  int frames_, lying_ = 0;
+};
+
+struct PlayEvent {
+  double t = 0.0;     // seconds since the session started (resets do not restart it)
+  std::string event;  // request, switch, dropped, down, recovering, recovered, push, cube, reset
+  std::string skill;  // the requested skill, the one taking over, the active one
+};
+
+struct PlayOptions {
+  SwitchRule rule;                    // how requested skills take over (the score rule by default)
+  std::vector<std::string> recovery;  // skills that get a fallen character up; none: no recovery
+  double push_force = 400.0;          // newtons, horizontal, on the root
+  double push_seconds = 0.2;
+  double down_height = 0.5;           // DownRule's
+  int down_frames = 10;
+  std::uint64_t seed = 1;             // starts, push directions
+};
+
+class PlaySession {
+ public:
+  // The first skill starts. Throws mimic::Error naming an unknown recovery skill.
+  PlaySession(std::vector<std::shared_ptr<const Skill>> skills, PlayOptions options);
+
+  // Asks for skill `index` (0-based, in the order given); false for no such skill. While the
+  // character is being got up, the request waits for the get-up to end.
+  bool request(std::size_t index);
+  // Pushes the character's root horizontally along `direction` (world frame) with the options'
+  // force; without a direction, along one drawn at random.
+  void push(const Eigen::Vector3d& direction);
+  void push();
+  // Throws a cube at the torso; false where the active skill's world has none (Controller::throw_cube).
+  bool throw_cube();
+  // A new start of the first skill.
+  void reset();
+  // One control step, and the events it brought.
+  void step();
+
+  double time() const { return time_; }
+  bool down() const { return down_.down(); }
+  bool recovering() const { return recovering_; }
+  const std::string& wanted() const { return wanted_; }  // the skill asked for last (the first at the start)
+  // Each skill's switch score of the current state (NaN for a skill without discriminators).
+  std::vector<double> scores();
+  const std::vector<PlayEvent>& events() const { return events_; }
+  Controller& controller() { return controller_; }
+  const PlayOptions& options() const { return options_; }
+
+ private:
+  void log(const std::string& event, const std::string& skill) { events_.push_back({time_, event, skill}); }
+  void start_recovery();
+
+  Controller controller_;
+  PlayOptions options_;
+  DownRule down_;
+  std::string wanted_;
+  bool recovering_ = false;
+  double time_ = 0.0;
+  std::mt19937_64 rng_;
+  std::vector<PlayEvent> events_;
+};
+
+}  // namespace mimic

@@ -1,0 +1,132 @@
+// The interactive session (control/play_session): the down rule on hand-made root heights, pushes
+// and cubes through the controller, and the session's events on the committed humanoid skills:
+// a request taken over, a push that floors the character, recovery handing over and back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "control/play_session.hpp"
+#include "error_message.hpp"
+#include "mimic/runtime.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+using test::error_of;
+
+namespace {
+
+const std::filesystem::path kModels = std::filesystem::path(MIMIC_SOURCE_DIR) / "models";
+
+TEST(DownRule, TenFramesBelowHalfTheStandingHeightAndNotACrouch) {
+  DownRule rule(0.9);  // lying: below 0.45 m for 10 frames in a row
+  // A deep crouch: the root at 0.5 m (above 0.45) for a long time is never down.
+  for (int i = 0; i < 100; ++i) EXPECT_FALSE(rule.update(0.5));
+  EXPECT_FALSE(rule.down());
+  // Nine frames lying, one up: the count starts again.
+  for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.2));
+  EXPECT_FALSE(rule.update(0.46));
+  for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.2));
+  // The tenth frame in a row is the fall, said once.
+  EXPECT_TRUE(rule.update(0.44));
+  EXPECT_TRUE(rule.down());
+  for (int i = 0; i < 20; ++i) EXPECT_FALSE(rule.update(0.1));
+  EXPECT_TRUE(rule.down());
+  // Up again; a second fall is said again.
+  EXPECT_FALSE(rule.update(0.9));
+  EXPECT_FALSE(rule.down());
+  for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.1));
+  EXPECT_TRUE(rule.update(0.1));
+  // Another standing height and other settings.
+  rule.restart(2.0);
+  EXPECT_FALSE(rule.down());
+  DownRule quick(1.0, 0.3, 2);
+  EXPECT_FALSE(quick.update(0.31));
+  EXPECT_FALSE(quick.update(0.29));
+  EXPECT_TRUE(quick.update(0.29));
+  EXPECT_NE(error_of([] { DownRule bad(1.0, 1.5, 10); }).find("fraction in (0, 1)"), std::string::npos);
+  EXPECT_NE(error_of([] { DownRule bad(1.0, 0.5, 0); }).find("frames >= 1"), std::string::npos);
+}
+
+TEST(PlaySession, APushMovesTheRootAlongItAndACubeIsThrownOnlyWhereTheWorldHasCubes) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const auto walk = Skill::load(kModels / "humanoid_walk_iccgan", "walk");
+  // The same start twice; one is pushed sideways (+y) for 0.2 s from step 10.
+  auto lateral_after = [&](bool pushed) {
+    Controller c({walk}, 4);
+    for (int i = 0; i < 10; ++i) (void)c.step();
+    const double y0 = c.root_position().y();
+    if (pushed) c.push(Eigen::Vector3d(0, 400, 0), 0.2);
+    for (int i = 0; i < 8; ++i) (void)c.step();
+    return c.root_position().y() - y0;
+  };
+  const double free = lateral_after(false), pushed = lateral_after(true);
+  // 400 N for 0.2 s is 80 N s on a 45 kg body: ~1.8 m/s, about 0.1 m within the 8 steps.
+  EXPECT_GT(pushed - free, 0.08) << "free " << free << ", pushed " << pushed;
+  Controller c({walk}, 4);
+  EXPECT_FALSE(c.throw_cube());  // the model's world has no cubes
+  EXPECT_NE(error_of([&] { c.push(Eigen::Vector3d(std::nan(""), 0, 0), 0.2); }).find("finite"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.push(Eigen::Vector3d(1, 0, 0), -1); }).find("seconds >= 0"), std::string::npos);
+  // With cubes on demand: none flies until one is thrown.
+  const auto armed = Skill::load(kModels / "humanoid_walk_iccgan", "walk", {"env.projectiles={enabled: true, every: 0, mass: 20, speed: 6}"});
+  Controller with({armed}, 4);
+  for (int i = 0; i < 5; ++i) (void)with.step();
+  EXPECT_TRUE(with.throw_cube());
+}
+
+TEST(PlaySession, ARequestIsTakenOverAndLoggedAndAFloorPushStartsTheRecovery) {
+  std::filesystem::path data;
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);
+  const auto walk = Skill::load(kModels / "humanoid_walk_iccgan", "walk");
+  const auto run = Skill::load(kModels / "humanoid_run_iccgan_straight_loop", "run");
+  PlayOptions o;
+  o.rule.threshold = -1.0;  // any state: the request is granted on the next step
+  PlaySession session({walk, run}, o);
+  EXPECT_EQ(session.wanted(), "walk");
+  ASSERT_EQ(session.scores().size(), 2u);
+  for (double s : session.scores()) EXPECT_TRUE(s >= -1 && s <= 1) << s;
+  EXPECT_FALSE(session.request(2));  // no third skill
+  for (int i = 0; i < 30; ++i) session.step();
+  EXPECT_TRUE(session.request(1));
+  session.step();
+  EXPECT_EQ(session.controller().skill(), "run");
+  ASSERT_GE(session.events().size(), 2u);
+  const PlayEvent& request = session.events()[session.events().size() - 2];
+  const PlayEvent& taken = session.events().back();
+  EXPECT_EQ(request.event, "request");
+  EXPECT_EQ(request.skill, "run");
+  EXPECT_NEAR(request.t, 30.0 / 30.0, 1e-9);
+  EXPECT_EQ(taken.event, "switch");
+  EXPECT_EQ(taken.skill, "run");
+  EXPECT_NEAR(taken.t, 31.0 / 30.0, 1e-9);
+  EXPECT_NE(error_of([&] { PlayOptions bad; bad.recovery = {"getup"}; PlaySession s({walk, run}, bad); }).find("no skill 'getup'"),
+            std::string::npos);
+
+  // Recovery: with the walk as the "get-up" (what matters is the hand-over, not the getting up), a
+  // push hard enough to floor the runner makes the character down, the recovery skill takes it at
+  // once, and the run is asked for again.
+  PlayOptions r;
+  r.recovery = {"walk"};
+  r.push_force = 3000;
+  r.push_seconds = 0.3;
+  PlaySession fall({run, walk}, r);
+  for (int i = 0; i < 10; ++i) fall.step();
+  fall.push(Eigen::Vector3d(0, 1, 0));
+  bool recovering = false;
+  for (int i = 0; i < 150 && !recovering; ++i) {
+    fall.step();
+    recovering = fall.recovering();
+  }
+  ASSERT_TRUE(recovering) << "3000 N for 0.3 s floors the character within 5 s";
+  EXPECT_EQ(fall.controller().skill(), "walk");
+  EXPECT_EQ(fall.controller().requested(), "run");
+  std::vector<std::string> kinds;
+  for (const PlayEvent& e : fall.events()) kinds.push_back(e.event);
+  ASSERT_GE(kinds.size(), 3u);
+  EXPECT_EQ(kinds[kinds.size() - 3], "push");
+  EXPECT_EQ(kinds[kinds.size() - 2], "down");
+  EXPECT_EQ(kinds.back(), "recovering");
+  EXPECT_EQ(fall.events().back().skill, "walk");
+}
+
+}  // namespace
