@@ -25,8 +25,8 @@ parts=("$@")
 
 bench() {
   echo "== throughput (mimic bench train): $out/bench.md"
-  "$mimic" bench train --threads 1,2 --overlap --iterations 4 | tee "$out/bench.md"
-  mpirun -np 2 --bind-to none "$mimic" bench train --threads 1 --iterations 4 | tee "$out/bench_mpi.md"
+  "$mimic" bench train --threads 1,2 --overlap --iterations 4 --rounds 3 | tee "$out/bench.md"
+  mpirun -np 2 --bind-to none "$mimic" bench train --threads 1 --iterations 4 --rounds 3 | tee "$out/bench_mpi.md"
   # Parallel efficiency: two ranks' samples/s over twice one process's at one thread (no overlap).
   one=$(awk -F'|' '$2+0 == 1 && $3+0 == 1 && $4 ~ /no/ { print $6 + 0 }' "$out/bench.md")
   two=$(awk -F'|' '$2+0 == 2 && $3+0 == 1 { print $6 + 0 }' "$out/bench_mpi.md")

@@ -212,8 +212,9 @@ file(WRITE ${OUT}/gail.yaml "seed: 2\niterations: 2\nenv: {name: planar_walker}\
 run_ok(train ${OUT}/gail.yaml -o ${OUT}/gail_run)
 file(READ ${OUT}/gail_run/metrics.csv gail_metrics)
 expect_in("${gail_metrics}" "gail_reward,gail_loss,gail_expert_accuracy,gail_policy_accuracy,gail_expert_score,gail_policy_score,gail_penalty")
-run_ok(bench train --config ${OUT}/gail.yaml --threads 1 --iterations 1 --overlap)
-expect_in("${LAST_OUT}" "gail.yaml (1 timed iterations)")
+run_ok(bench train --config ${OUT}/gail.yaml --threads 1 --iterations 1 --overlap --rounds 2)
+expect_in("${LAST_OUT}" "gail.yaml (1 timed iterations), each setting measured in 2 rounds:")
+expect_in("${LAST_OUT}" "(Medians of 2 rounds;")
 # One process (rank), one thread, with and without learning beside collection.
 expect_in("${LAST_OUT}" "| 1 | 1 | no | ")
 expect_in("${LAST_OUT}" "| 1 | 1 | yes | ")

@@ -215,6 +215,9 @@ void add_train_commands(CLI::App& app) {
   bench_train->add_option("--iterations", args->bench.iterations, "timed iterations after one warm-up")->capture_default_str()->check(CLI::PositiveNumber);
   CLI::Option* samples = bench_train->add_option("--samples", args->bench.samples, "samples per iteration (PPO buffer)")
                              ->capture_default_str()->check(CLI::PositiveNumber);
+  bench_train->add_option("--rounds", args->bench.rounds, "measure every setting this many times, one round after another, and report medians")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   bench_train->add_flag("--overlap", args->bench.overlap, "measure each thread count also with collect.overlap (learning beside collection)");
   CLI::Option* envs = bench_train->add_option("--envs", args->bench.envs, "environments")->capture_default_str()->check(CLI::PositiveNumber);
   // A config brings its own samples and environments: the two options would be ignored.
