@@ -21,6 +21,8 @@ packages=(
   libopenmpi-dev openmpi-bin
   # pictures and video: headless EGL with Mesa software rendering (llvmpipe) for MuJoCo's renderer, ffmpeg for MP4/GIF
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libosmesa6-dev libglfw3-dev ffmpeg
+  # `mimic play`'s window tested without a display: a virtual X server and key presses sent to it
+  xvfb xauth xdotool
 )
 
 missing=()

@@ -185,6 +185,9 @@ TEST(Projectile, EveryFrameProtocolRecyclesAFixedPool) {
   CharacterEnv env(humanoid(), cfg);
   const ProjectileLauncher& p = *env.projectiles();
   EXPECT_EQ(p.pool_size(), projectile_pool_size(cfg.projectiles, cfg.sim.control_hz));
+  // The cubes are parked a kilometre away, but a picture is framed on the character: MuJoCo's
+  // near clipping plane (0.01 of the extent) would otherwise be 10 m away and cut it out.
+  EXPECT_DOUBLE_EQ(env.world().model()->stat.extent, 3.0);
   std::mt19937_64 rng(5);
   env.reset(rng);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());

@@ -31,9 +31,16 @@ TEST(DownRule, TenFramesBelowHalfTheStandingHeightAndNotACrouch) {
   EXPECT_TRUE(rule.down());
   for (int i = 0; i < 20; ++i) EXPECT_FALSE(rule.update(0.1));
   EXPECT_TRUE(rule.down());
-  // Up again; a second fall is said again.
+  // A bounce above the height while lying is no new fall: down until 10 frames in a row are above.
+  for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.6));
+  EXPECT_TRUE(rule.down());
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(rule.update(0.1));
+  EXPECT_TRUE(rule.down());
+  for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.9));
+  EXPECT_TRUE(rule.down());
   EXPECT_FALSE(rule.update(0.9));
   EXPECT_FALSE(rule.down());
+  // Up again; a second fall is said again.
   for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.1));
   EXPECT_TRUE(rule.update(0.1));
   // Another standing height and other settings.

@@ -16,6 +16,7 @@ void add_imitation_commands(CLI::App& app);
 void add_imitate_command(CLI::App& app);
 void add_distill_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_play_command(CLI::App& app);
 void add_report_commands(CLI::App& app);
 void add_bench_policy_command(CLI::App& bench);  // under `mimic bench`
 

@@ -26,6 +26,7 @@ int run(int argc, char** argv) {
   mimic::app::add_imitation_commands(app);
   mimic::app::add_distill_command(app);
   mimic::app::add_eval_command(app);
+  mimic::app::add_play_command(app);
   mimic::app::add_report_commands(app);
   try {
     app.parse(argc, argv);

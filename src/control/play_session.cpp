@@ -16,15 +16,22 @@ DownRule::DownRule(double standing_height, double height, int frames) : standing
 bool DownRule::update(double root_height) {
   if (root_height >= height_ * standing_) {
     lying_ = 0;
+    // Up again once as many frames in a row are above as it took to be down (a root that bounces
+    // while the character lies is not a new fall).
+    if (down_ && ++up_ >= frames_) down_ = false, up_ = 0;
     return false;
   }
-  ++lying_;
-  return lying_ == frames_;
+  up_ = 0;
+  if (down_) return false;
+  if (++lying_ < frames_) return false;
+  down_ = true;
+  return true;
 }
 
 void DownRule::restart(double standing_height) {
   standing_ = standing_height;
-  lying_ = 0;
+  lying_ = up_ = 0;
+  down_ = false;
 }
 
 PlaySession::PlaySession(std::vector<std::shared_ptr<const Skill>> skills, PlayOptions options)

@@ -15,18 +15,20 @@
 namespace mimic {
 
 // The robustness protocol's rule for a character that is down: its root below `height` times its
-// standing height for `frames` control steps in a row. A crouch stays above it.
+// standing height for `frames` control steps in a row. A crouch stays above it. It is up again
+// after as many steps in a row above that height.
 class DownRule {
  public:
   DownRule(double standing_height, double height = 0.5, int frames = 10);
   // One control step's root height; true at the step the character becomes down (once per fall).
   bool update(double root_height);
-  bool down() const { return lying_ >= frames_; }
+  bool down() const { return down_; }
   void restart(double standing_height);
 
  private:
   double standing_, height_;
-  int frames_, lying_ = 0;
+  int frames_, lying_ = 0, up_ = 0;
+  bool down_ = false;
 };
 
 struct PlayEvent {

@@ -7,18 +7,12 @@
 #include <vector>
 
 #include "core/math.hpp"
+#include "render/mujoco_scene.hpp"
 
 struct mjModel_;
 struct mjData_;
 
 namespace mimic {
-
-struct CameraSpec {
-  Vec3 lookat = Vec3(0, 0, 0.9);
-  double distance = 3.5;
-  double azimuth = 90.0;    // degrees; 90 looks at the character's left side when it faces +X
-  double elevation = -12.0;  // degrees
-};
 
 // Where a following camera looks: the character's root smoothed over frames (a steady picture of
 // a gait's sway), taken as it is at the first frame and at the first after restart(). A new
@@ -50,8 +44,9 @@ class OffscreenRenderer {
 
   int width() const { return width_; }
   int height() const { return height_; }
-  // Renders `data` (and `ghost`, translucent, if given) into `rgb` (width*height*3, top row first).
-  void render(mjData_* data, const CameraSpec& cam, std::vector<std::uint8_t>& rgb, mjData_* ghost = nullptr);
+  // Renders `data` (and `ghost`, translucent, if given) into `rgb` (width*height*3, top row first),
+  // with `overlay`'s text over it.
+  void render(mjData_* data, const CameraSpec& cam, std::vector<std::uint8_t>& rgb, mjData_* ghost = nullptr, const Overlay& overlay = {});
 
  private:
   struct Impl;

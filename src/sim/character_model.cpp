@@ -218,6 +218,7 @@ std::string build_mjcf(const CharacterModel& ch, const MjcfOptions& opts) {
       "  <option timestep=\"{}\" gravity=\"0 0 -9.81\" integrator=\"Euler\"/>\n"
       "  <size njmax=\"{}\" nconmax=\"{}\"/>\n"
       "  <visual><global offwidth=\"1280\" offheight=\"720\"/><quality shadowsize=\"2048\"/></visual>\n"
+      "{}"
       "  <default>\n"
       "    <joint armature=\"{}\" limited=\"false\"/>\n"
       "    <geom contype=\"2\" conaffinity=\"1\" condim=\"3\" friction=\"{} 0.005 0.0001\"/>\n"
@@ -230,8 +231,9 @@ std::string build_mjcf(const CharacterModel& ch, const MjcfOptions& opts) {
       "  </asset>\n"
       "  <worldbody>\n"
       "    <light name=\"sun\" directional=\"true\" pos=\"0 0 5\" dir=\"-0.3 -0.3 -1\" diffuse=\".8 .8 .8\"/>\n",
-      ch.name, ch.name, num(opts.timestep), opts.max_constraints, opts.max_contacts, num(opts.armature), num(opts.friction),
-      opts.extra_assets);
+      ch.name, ch.name, num(opts.timestep), opts.max_constraints, opts.max_contacts,
+      opts.visual_extent > 0 ? fmt::format("  <statistic extent=\"{}\" center=\"0 0 1\"/>\n", num(opts.visual_extent)) : std::string(),
+      num(opts.armature), num(opts.friction), opts.extra_assets);
   xml += opts.extra_worldbody;
   if (opts.floor)
     xml += "    <geom name=\"floor\" type=\"plane\" size=\"100 100 0.1\" material=\"grid\" contype=\"1\" conaffinity=\"1\"/>\n";

@@ -45,6 +45,10 @@ struct MjcfOptions {
   // Extra MJCF inside <asset> and <worldbody> (terrain, projectiles): added as given.
   std::string extra_assets;
   std::string extra_worldbody;
+  // The size of the scene a renderer frames (MJCF <statistic extent>, metres; 0: MuJoCo's own,
+  // from the bodies' positions). Visual only. Bodies parked far away (projectiles) would make
+  // MuJoCo's own so large that its near clipping plane cuts the character out of the picture.
+  double visual_extent = 0;
 };
 
 // MJCF text of the character standing on a floor. Joints keep the skeleton's names; bodies are

@@ -67,6 +67,7 @@ void ProjectileLauncher::add_to(MjcfOptions& opts, const ProjectileSpec& spec, d
   if (!spec.enabled) return;
   check(spec);
   const int n = spec.pool > 0 ? spec.pool : projectile_pool_size(spec, control_hz);
+  opts.visual_extent = 3.0;  // (the parked cubes are a kilometre away; a person is a metre or two)
   const double h = spec.size / 2;
   for (int k = 0; k < n; ++k) {
     const Vec3 p = park_position(k);

@@ -1,0 +1,315 @@
+// mimic play MODEL... : the skills of one character in a window (or headless, from a script):
+// keys request skills, push the character, throw cubes; a fallen character is got up by the
+// --recover skills. The session's events go to --json (docs/interactive.md).
+#include <mujoco/mujoco.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include "app/commands.hpp"
+#include "control/play_session.hpp"
+#include "control/skill_impl.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/text_scanner.hpp"
+#include "render/offscreen.hpp"
+#include "render/video_writer.hpp"
+#include "render/window.hpp"
+
+namespace mimic::app {
+
+namespace {
+
+// The keys a script or the window gives, and what each does (the help text and the docs).
+const std::vector<std::string> kKeys = {"1", "2", "3", "4", "5", "6", "7", "8", "9", "p", "b", "r", "c", "v", "space", "left", "right", "up", "down", "escape"};
+
+struct ScriptLine {
+  double t = 0;
+  std::string key;
+};
+
+// Lines of "SECONDS KEY" (keys as kKeys; '#' starts a comment), in time order.
+std::vector<ScriptLine> read_script(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path.string() + ": cannot open the script");
+  std::vector<ScriptLine> out;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    std::string time, key, extra;
+    if (!(words >> time)) continue;
+    const std::string where = path.string() + ":" + std::to_string(n) + ": ";
+    if (!(words >> key)) throw Error(where + "expected 'SECONDS KEY', found only '" + time + "'");
+    if (words >> extra) throw Error(where + "expected 'SECONDS KEY', found more after the key: '" + extra + "'");
+    char* end = nullptr;
+    const double t = std::strtod(time.c_str(), &end);
+    if (end == time.c_str() || *end != '\0' || !std::isfinite(t) || t < 0) throw Error(where + "'" + time + "' is not a time in seconds >= 0");
+    for (auto& ch : key) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end()) {
+      std::string known;
+      for (const auto& k : kKeys) known += (known.empty() ? "" : " ") + k;
+      throw Error(where + "unknown key '" + key + "' (keys: " + known + ")");
+    }
+    if (!out.empty() && t < out.back().t) throw Error(where + "the times must not go back (" + time + " after " + fmt::format("{}", out.back().t) + ")");
+    out.push_back({t, key});
+  }
+  return out;
+}
+
+// The views C cycles through, all following the character's root.
+const std::vector<CameraSpec> kViews = {
+    CameraSpec{Vec3::Zero(), 4.0, 90.0, -12.0},    // its left side
+    CameraSpec{Vec3::Zero(), 4.5, 180.0, -15.0},   // from behind (it walks along +x)
+    CameraSpec{Vec3::Zero(), 4.0, 0.0, -12.0},     // from the front
+    CameraSpec{Vec3::Zero(), 7.0, 135.0, -35.0},   // from above
+};
+
+struct Args {
+  std::vector<std::filesystem::path> models, recover;
+  std::string rule = "score";
+  double tau = 0.2, time_limit = 2.0;
+  int delay = 0;
+  std::filesystem::path script, output, json, screenshot;
+  double seconds = 0;
+  bool headless = false;
+  int width = 960, height = 540;
+  double push_force = 400, cube_mass = 5, cube_speed = 5;
+  std::uint64_t seed = 1;
+};
+
+// What the user sees and steers besides the session: the view, pause, recording.
+struct View {
+  std::size_t view = 0;
+  double azimuth_offset = 0, distance_offset = 0;
+  bool paused = false, quit = false, record_toggled = false;
+  CameraFollow follow;
+};
+
+// One key, from the window or the script.
+void press(const std::string& key, PlaySession& session, View& view) {
+  if (key.size() == 1 && key[0] >= '1' && key[0] <= '9') {
+    const auto index = static_cast<std::size_t>(key[0] - '1');
+    if (!session.request(index)) spdlog::warn("key {}: there is no skill {} (the session has {})", key, index + 1, session.controller().skills().size());
+  } else if (key == "p") {
+    session.push();
+  } else if (key == "b") {
+    if (!session.throw_cube()) spdlog::warn("key b: the active skill's world has no cubes");
+  } else if (key == "r") {
+    session.reset();
+    view.follow.restart();
+  } else if (key == "c") {
+    view.view = (view.view + 1) % kViews.size();
+  } else if (key == "space") {
+    view.paused = !view.paused;
+  } else if (key == "v") {
+    view.record_toggled = true;
+  } else if (key == "left" || key == "right") {
+    view.azimuth_offset += key == "left" ? -15 : 15;  // (no shipped skill takes a heading: the arrows turn the camera)
+  } else if (key == "up" || key == "down") {
+    view.distance_offset = std::clamp(view.distance_offset + (key == "up" ? -0.5 : 0.5), -3.0, 10.0);
+  } else if (key == "escape") {
+    view.quit = true;
+  }
+}
+
+CameraSpec camera(View& view, const Controller& c) {
+  CameraSpec cam = kViews[view.view];
+  cam.lookat = view.follow.update(Vec3(c.root_position()));
+  cam.lookat.z() = 0.9;
+  cam.azimuth += view.azimuth_offset;
+  cam.distance += view.distance_offset;
+  return cam;
+}
+
+// The text over the picture: the active skill, the one asked for, the rule, each skill's score.
+Overlay overlay(PlaySession& s, const View& view) {
+  const Controller& c = s.controller();
+  Overlay o;
+  o.left = "time\nskill\nasked for\nrule\n";
+  o.right = fmt::format("{:.1f} s{}\n{}{}\n{}\n{} {}\n", s.time(), view.paused ? " (paused)" : "", c.skill(), s.recovering() ? " (getting up)" : "",
+                        c.requested().empty() ? "-" : c.requested() + " (waiting)", c.switch_rule().by == SwitchRule::By::Score ? "score >=" : c.switch_rule().by == SwitchRule::By::Value ? "value >=" : "at once",
+                        c.switch_rule().by == SwitchRule::By::Immediately ? std::string() : fmt::format("{:.2f}", c.switch_rule().threshold));
+  const std::vector<double> scores = s.scores();
+  for (std::size_t i = 0; i < scores.size(); ++i) {
+    o.left += fmt::format("{} {}\n", i + 1, c.skills()[i]->name());
+    o.right += std::isnan(scores[i]) ? "no discriminator\n" : fmt::format("{:+.2f}\n", scores[i]);
+  }
+  o.left += "keys";
+  o.right += "1-9 skill, p push, b cube, r reset, c camera, v record, space pause";
+  return o;
+}
+
+std::string events_json(const std::vector<PlayEvent>& events) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < events.size(); ++i)
+    out += fmt::format("{}\n  {{\"t\": {}, \"event\": {}, \"skill\": {}}}", i ? "," : "", json_number(std::round(events[i].t * 1e4) / 1e4),
+                       json_string(events[i].event), json_string(events[i].skill));
+  return out + (events.empty() ? "]\n" : "\n]\n");
+}
+
+void write_ppm(const std::filesystem::path& path, const std::vector<std::uint8_t>& rgb, int width, int height) {
+  std::string bytes = fmt::format("P6\n{} {}\n255\n", width, height);
+  bytes.append(reinterpret_cast<const char*>(rgb.data()), rgb.size());
+  write_file_atomic(path, bytes);
+}
+
+// The skills, each world with cubes thrown only on demand; all must share one world to be drawn.
+std::vector<std::shared_ptr<const Skill>> load_skills(const Args& a) {
+  const std::vector<std::string> settings = {fmt::format("env.projectiles={{enabled: true, every: 0, mass: {}, speed: {}}}", a.cube_mass, a.cube_speed)};
+  std::vector<std::shared_ptr<const Skill>> skills;
+  for (const auto& list : {&a.models, &a.recover})
+    for (const auto& dir : *list) {
+      spdlog::info("loading {}", dir.string());
+      skills.push_back(Skill::load(dir, "", settings));
+    }
+  return skills;
+}
+
+void run_play(const Args& a) {
+  if (a.models.empty()) throw Error("play: give at least one model");
+  if (a.models.size() + a.recover.size() > 9) throw Error("play: at most 9 skills (keys 1-9), --recover ones included");
+  if (a.headless && a.output.empty() && a.json.empty()) throw Error("play --headless: give -o (a video) or --json (the events), or both");
+  const std::vector<ScriptLine> script = a.script.empty() ? std::vector<ScriptLine>{} : read_script(a.script);
+  double seconds = a.seconds;
+  if (a.headless && seconds <= 0) {
+    if (script.empty()) throw Error("play --headless: give --seconds, or a --script (it then runs 2 s past its last key)");
+    seconds = script.back().t + 2.0;
+  }
+  PlayOptions o;
+  o.rule.by = a.rule == "value" ? SwitchRule::By::Value : a.rule == "immediately" ? SwitchRule::By::Immediately : SwitchRule::By::Score;
+  o.rule.threshold = a.tau;
+  o.rule.delay_steps = a.delay;
+  o.rule.time_limit_seconds = a.time_limit;
+  o.push_force = a.push_force;
+  o.seed = a.seed;
+  std::vector<std::shared_ptr<const Skill>> skills = load_skills(a);
+  for (std::size_t i = a.models.size(); i < skills.size(); ++i) o.recovery.push_back(skills[i]->name());
+  PlaySession session(skills, o);
+  const mjModel* model = session.controller().physics_model();
+  // One picture for every skill's world: the same bodies and geoms (no skill with its own terrain).
+  for (const auto& s : skills) {
+    const std::unique_ptr<Env> env = make_skill_env(*s);
+    const mjModel* m = env->physics_model();
+    if (!m || m->nbody != model->nbody || m->ngeom != model->ngeom)
+      throw Error("play: skill '" + s->name() + "' (" + s->directory().string() + ") acts in another world than skill '" + skills.front()->name() +
+                  "' (its bodies or geoms differ: a terrain?); one window draws one world");
+  }
+  std::string names;
+  for (std::size_t i = 0; i < skills.size(); ++i) names += fmt::format("{}{} {}", i ? ", " : "", i + 1, skills[i]->name());
+  spdlog::info("skills: {}{}", names, o.recovery.empty() ? "" : " (the last " + std::to_string(o.recovery.size()) + " get a fallen character up)");
+
+  const double dt = session.controller().control_dt();
+  const long long total_steps = seconds > 0 ? std::llround(seconds / dt) : -1;
+  View view;
+  std::size_t next_line = 0;
+  std::size_t logged = 0;
+  auto log_events = [&] {
+    for (; logged < session.events().size(); ++logged) {
+      const PlayEvent& e = session.events()[logged];
+      spdlog::info("{:7.2f} s  {} {}", e.t, e.event, e.skill);
+    }
+  };
+  auto due_keys = [&] {
+    std::vector<std::string> keys;
+    for (; next_line < script.size() && script[next_line].t <= session.time() + 1e-9; ++next_line) keys.push_back(script[next_line].key);
+    return keys;
+  };
+  std::vector<std::uint8_t> rgb;
+
+  if (a.headless) {
+    OffscreenRenderer renderer(model, a.width, a.height);
+    std::unique_ptr<VideoWriter> video = a.output.empty() ? nullptr : std::make_unique<VideoWriter>(a.output, a.width, a.height, 1.0 / dt);
+    for (long long i = 0; i < total_steps && !view.quit; ++i) {
+      for (const auto& k : due_keys()) press(k, session, view);
+      if (!view.paused) session.step();
+      log_events();
+      if (video) {
+        renderer.render(session.controller().physics_data(), camera(view, session.controller()), rgb, nullptr, overlay(session, view));
+        video->write(rgb);
+      }
+    }
+    if (video) video->close();
+    if (video) spdlog::info("wrote {} ({} frames)", a.output.string(), video->frames());
+  } else {
+    Window window(model, a.width, a.height, "mimic play");
+    std::unique_ptr<VideoWriter> video;
+    std::filesystem::path record_to = a.output.empty() ? std::filesystem::path("play.mp4") : a.output;
+    using clock = std::chrono::steady_clock;
+    auto next_frame = clock::now();
+    const auto frame = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(dt));
+    for (long long i = 0; (total_steps < 0 || i < total_steps) && !view.quit && !window.closed(); ++i) {
+      std::vector<std::string> keys = window.poll();
+      for (auto& k : due_keys()) keys.push_back(std::move(k));
+      for (const auto& k : keys) press(k, session, view);
+      if (view.record_toggled) {
+        view.record_toggled = false;
+        if (video) {
+          video->close();
+          spdlog::info("wrote {} ({} frames)", record_to.string(), video->frames());
+          video.reset();
+        } else {
+          video = std::make_unique<VideoWriter>(record_to, window.framebuffer_width(), window.framebuffer_height(), 1.0 / dt);
+          spdlog::info("recording into {} (v stops)", record_to.string());
+        }
+      }
+      if (!view.paused) session.step();
+      log_events();
+      const bool read = video || !a.screenshot.empty();
+      window.draw(session.controller().physics_data(), camera(view, session.controller()), overlay(session, view), read ? &rgb : nullptr);
+      if (video) video->write(rgb);
+      next_frame += frame;
+      std::this_thread::sleep_until(next_frame);
+      if (clock::now() > next_frame + 10 * frame) next_frame = clock::now();  // far behind (a slow machine): no catching up
+    }
+    if (video) {
+      video->close();
+      spdlog::info("wrote {} ({} frames)", record_to.string(), video->frames());
+    }
+    if (!a.screenshot.empty()) {
+      if (rgb.empty()) throw Error("play: no frame was drawn for --screenshot");
+      write_ppm(a.screenshot, rgb, window.framebuffer_width(), window.framebuffer_height());
+      spdlog::info("wrote {}", a.screenshot.string());
+    }
+  }
+  log_events();
+  if (!a.json.empty()) {
+    write_file_atomic(a.json, events_json(session.events()));
+    spdlog::info("wrote {} ({} events)", a.json.string(), session.events().size());
+  }
+}
+
+}  // namespace
+
+void add_play_command(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  CLI::App* play = app.add_subcommand("play", "the skills of one character in a window (or headless from a script): keys request skills, push, throw cubes");
+  play->add_option("models", a->models, "model directories (mimic export): keys 1, 2, ... request them; the first starts")->required()->check(CLI::ExistingDirectory);
+  play->add_option("--recover", a->recover, "get-up models: a character that is down is handed to the one whose discriminators score it highest, and back by the rule")
+      ->check(CLI::ExistingDirectory);
+  play->add_option("--rule", a->rule, "when a requested skill takes over: score (its discriminators), value, immediately")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"score", "value", "immediately"}));
+  play->add_option("--tau", a->tau, "the rule's threshold")->capture_default_str();
+  play->add_option("--delay", a->delay, "control steps after a take-over before another request may be granted")->capture_default_str()->check(CLI::NonNegativeNumber);
+  play->add_option("--time-limit", a->time_limit, "seconds a request waits before it is dropped")->capture_default_str()->check(CLI::NonNegativeNumber);
+  play->add_option("--script", a->script, "lines of 'SECONDS KEY' pressed at those times (keys: 1-9 p b r c v space left right up down escape)")
+      ->check(CLI::ExistingFile);
+  play->add_option("--seconds", a->seconds, "stop after this long (headless default: 2 s past the script's last key)")->check(CLI::PositiveNumber);
+  play->add_flag("--headless", a->headless, "no window: run as fast as possible, film into -o");
+  play->add_option("-o,--output", a->output, "video (.mp4): headless, the whole session; in the window, what v records (default play.mp4)");
+  play->add_option("--json", a->json, "the session's events: [{t, event, skill}] (request, switch, dropped, down, recovering, recovered, push, cube, reset)");
+  play->add_option("--screenshot", a->screenshot, "the window's last frame, as a PPM picture");
+  play->add_option("--width", a->width, "pixels")->capture_default_str()->check(CLI::Range(16, 1920));
+  play->add_option("--height", a->height, "pixels")->capture_default_str()->check(CLI::Range(16, 1080));
+  play->add_option("--push-force", a->push_force, "newtons of a push (p), for 0.2 s")->capture_default_str()->check(CLI::PositiveNumber);
+  play->add_option("--cube-mass", a->cube_mass, "kg of a thrown cube (b)")->capture_default_str()->check(CLI::PositiveNumber);
+  play->add_option("--cube-speed", a->cube_speed, "m/s of a thrown cube")->capture_default_str()->check(CLI::PositiveNumber);
+  play->add_option("--seed", a->seed, "starts and push directions")->capture_default_str();
+  play->callback([a] { run_play(*a); });
+}
+
+}  // namespace mimic::app

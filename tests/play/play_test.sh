@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# `mimic play` as a user runs it (control/play_session, app/play_command):
+#  1. headless, from a script: a key requests the run, it takes over, a push and a cube are
+#     thrown, and the events and the video are written; bad scripts and options are named errors;
+#  2. the real window under a virtual X server (Xvfb): a key pressed on it (xdotool) requests the
+#     run, which takes over; the screenshot is a picture of the scene, not an empty frame.
+# The committed walk and run act on the humanoid of ../shared/data. Skips (77) what this machine
+# cannot run: the shared data, or Xvfb and xdotool for the window (scripts/setup.sh installs them).
+# Usage: play_test.sh MIMIC SOURCE_DIR OUT_DIR
+set -euo pipefail
+mimic=$1 src=$2 out=$3
+rm -rf "$out" && mkdir -p "$out"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+data=${MIMIC_DATA:-$src/../shared/data}
+[ -f "$data/deepmimic/characters/humanoid3d.txt" ] || { echo "SKIP: no humanoid at $data (../shared/data)"; exit 77; }
+walk=$src/models/humanoid_walk_iccgan run=$src/models/humanoid_run_iccgan_straight_loop
+# tau -1: every state allows a request, so the take-over is the step after the key.
+play() { "$mimic" play "$walk" "$run" --tau -1 --width 320 --height 180 "$@"; }
+
+# 1. Headless.
+cat > "$out/session.txt" <<'SCRIPT'
+# seconds key
+0.3 2   # the run
+0.6 p   # a push
+0.8 b   # a cube
+SCRIPT
+play --headless --script "$out/session.txt" --seconds 1.2 -o "$out/session.mp4" --json "$out/events.json" > "$out/headless.log" 2>&1 ||
+  { cat "$out/headless.log"; fail "mimic play --headless"; }
+events=$(tr -d ' \n' < "$out/events.json")
+for want in '{"t":0.3,"event":"request","skill":"humanoid_run_iccgan_straight_loop"}' \
+            '{"t":0.3333,"event":"switch","skill":"humanoid_run_iccgan_straight_loop"}' \
+            '{"t":0.6,"event":"push","skill":"humanoid_run_iccgan_straight_loop"}' \
+            '{"t":0.8,"event":"cube","skill":"humanoid_run_iccgan_straight_loop"}'; do
+  [[ $events == *"$want"* ]] || fail "events.json lacks $want: $events"
+done
+[[ $events == '[{"t":0,"event":"reset"'* ]] && fail "the session's own start is not an event: $events"
+[ -s "$out/session.mp4" ] || fail "no video"
+grep -q "wrote $out/session.mp4 (36 frames)" "$out/headless.log" || { cat "$out/headless.log"; fail "1.2 s at 30 Hz is 36 frames"; }
+
+# Named errors, nothing written.
+bad() {  # expected message, then the arguments
+  local want=$1; shift
+  if "$mimic" play "$walk" "$@" > "$out/bad.log" 2>&1; then fail "mimic play $* succeeded"; fi
+  grep -qF -- "$want" "$out/bad.log" || { cat "$out/bad.log"; fail "mimic play $*: no '$want'"; }
+}
+printf '0.5 2\n1.0 x\n' > "$out/unknown_key.txt"
+bad "unknown_key.txt:2: unknown key 'x'" --headless --script "$out/unknown_key.txt" --json "$out/never.json"
+printf '1.0 2\n0.5 1\n' > "$out/backwards.txt"
+bad "backwards.txt:2: the times must not go back" --headless --script "$out/backwards.txt" --json "$out/never.json"
+printf 'soon 2\n' > "$out/bad_time.txt"
+bad "bad_time.txt:1: 'soon' is not a time in seconds" --headless --script "$out/bad_time.txt" --json "$out/never.json"
+bad "give -o (a video) or --json" --headless --seconds 1
+bad "give --seconds, or a --script" --headless --json "$out/never.json"
+bad "two skills are named 'humanoid_walk_iccgan'" --recover "$walk" --headless --seconds 1 --json "$out/never.json"
+[ ! -e "$out/never.json" ] || fail "a failed play wrote its events"
+(unset DISPLAY; bad "DISPLAY is not set: run with --headless, or under xvfb-run" --seconds 1)
+
+# 2. The window under Xvfb, a key pressed on it.
+if ! command -v xvfb-run > /dev/null || ! command -v xdotool > /dev/null; then
+  echo "SKIP: the window test needs xvfb-run and xdotool (scripts/setup.sh installs them)"; exit 77
+fi
+cat > "$out/window.sh" <<WINDOW
+set -euo pipefail
+"$mimic" play "$walk" "$run" --tau -1 --width 320 --height 180 --seconds 3 --screenshot "$out/shot.ppm" --json "$out/window.json" &
+pid=\$!
+win=\$(xdotool search --sync --onlyvisible --name "mimic play" | head -1)
+xdotool windowfocus --sync "\$win" key 2
+wait \$pid
+WINDOW
+timeout 600 xvfb-run -a -s "-screen 0 640x480x24" bash "$out/window.sh" > "$out/window.log" 2>&1 || { cat "$out/window.log"; fail "mimic play in a window under Xvfb"; }
+events=$(tr -d ' \n' < "$out/window.json")
+[[ $events == *'"event":"request","skill":"humanoid_run_iccgan_straight_loop"'* ]] || fail "the key 2 pressed on the window requested nothing: $events"
+[[ $events == *'"event":"switch","skill":"humanoid_run_iccgan_straight_loop"'* ]] || fail "the run did not take over: $events"
+# The screenshot: a 320x180 PPM, and a picture (the floor, the sky, the character, the text: many
+# colours), not an empty or one-colour frame.
+[ "$(head -c 15 "$out/shot.ppm" | tr '\n' ' ')" = "P6 320 180 255 " ] || fail "the screenshot is not a 320x180 PPM"
+[ "$(stat -c %s "$out/shot.ppm")" -eq $((15 + 320 * 180 * 3)) ] || fail "the screenshot's size is not 320x180x3 bytes after its header"
+colours=$(tail -c $((320 * 180 * 3)) "$out/shot.ppm" | od -An -v -tu1 -w3 | sort -u | wc -l)
+[ "$colours" -gt 200 ] || fail "the screenshot has $colours colours: not a picture of the scene"
+echo "play: headless and window sessions as expected ($colours colours in the window's frame)"
