@@ -438,12 +438,17 @@ TEST(RuntimeTransitions, EveryOrderedPairUnderEachRuleOnTheSameTrials) {
   std::vector<std::string> seen;
   const std::vector<TransitionCell> cells =
       measure_transitions(skills, o, [&](const TransitionCell& c) { seen.push_back(c.from + ">" + c.to + " " + c.rule); });
-  EXPECT_EQ(seen, (std::vector<std::string>{"walk>run score", "walk>run immediately", "run>walk score", "run>walk immediately"}));
+  EXPECT_EQ(seen, (std::vector<std::string>{"walk>run score", "walk>run value", "walk>run matching", "walk>run immediately", "run>walk score",
+                                             "run>walk value", "run>walk matching", "run>walk immediately"}));
   for (const TransitionCell& c : cells) {
     EXPECT_EQ(c.trials, 2);
-    if (c.rule == "score") {
-      EXPECT_EQ(c.switched, 0) << c.from << " > " << c.to << ": tau 1.01 is above every score";
+    if (c.rule == "score" || c.rule == "matching") {
+      EXPECT_EQ(c.switched, 0) << c.from << " > " << c.to << ": tau 1.01 is above every " << c.rule << " figure";
       EXPECT_TRUE(std::isnan(c.mean_wait));
+    } else if (c.rule == "value") {
+      // 1.01 times the target's mean value over its own episode: a positive figure, whatever it grants.
+      EXPECT_GT(c.value_threshold, 0.0);
+      EXPECT_LE(c.succeeded + c.fell, c.switched);
     } else {
       EXPECT_EQ(c.switched, 2);
       EXPECT_NEAR(c.mean_wait, 1.0 / 30.0, 1e-9);
@@ -451,6 +456,8 @@ TEST(RuntimeTransitions, EveryOrderedPairUnderEachRuleOnTheSameTrials) {
     }
   }
   EXPECT_THROW(measure_transitions({skills[0]}, o), Error);
+  o.score_rule = o.value_baseline = o.matching_baseline = o.immediate_baseline = false;
+  EXPECT_THROW(measure_transitions(skills, o), Error);
 }
 
 // The hand-over is faithful: the same walk handed its own state (pose, velocities, last poses) by

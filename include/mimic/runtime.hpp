@@ -86,9 +86,12 @@ struct StepInfo {
 // When a requested skill takes over (seed 004 section 5.3). By its score: the mean over its
 // discriminator ensemble's heads of clip(D_i, -1, 1) for the character's current trajectory (the
 // frames its discriminator sees) reaches `threshold` (eq. 6's tau). By its value: its value
-// network's estimate of the current state reaches `threshold` (the paper's baseline). Or at once.
+// network's estimate of the current state reaches `threshold` (the paper's baseline). By pose
+// matching: 1 - (mean joint distance from the character's pose to the nearest frame of the
+// skill's clips, poses in their heading frames) / (the clips' own spread about their mean pose)
+// reaches `threshold` (motion matching's baseline: 1 at a frame of the clip). Or at once.
 struct SwitchRule {
-  enum class By { Score, Value, Immediately };
+  enum class By { Score, Value, Matching, Immediately };
   By by = By::Score;
   double threshold = 0.2;
   // After a skill takes over, requests wait this many control steps (seed 004: 20 frames after a
@@ -127,6 +130,9 @@ class Controller {
   // a skill without discriminators (Skill::discriminators()).
   double score(const std::string& skill);
   double value(const std::string& skill);
+  // The skill's pose-matching readiness of the character's current pose (SwitchRule::By::Matching's
+  // figure); throws for a skill whose starts come from no clip.
+  double matching(const std::string& skill);
 
   // Pushes the character: `force` (world frame, newtons) on its root link through the next
   // `seconds` (a hand-over carries the rest over). A new push replaces one under way. Throws

@@ -207,6 +207,13 @@ std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>
   TransitionOptions o;
   o.trials = args.transition_trials;
   o.seed = args.seed;
+  if (!args.transition_taus.empty()) o.thresholds = args.transition_taus;
+  const auto has = [&](const char* rule) { return std::find(args.transition_rules.begin(), args.transition_rules.end(), rule) != args.transition_rules.end(); };
+  if (!has("score") && !has("value") && !has("matching") && !has("immediately")) throw Error("--transition-rules: name at least one rule");
+  o.score_rule = has("score");
+  o.value_baseline = has("value");
+  o.matching_baseline = has("matching");
+  o.immediate_baseline = has("immediately");
   spdlog::info("  transitions     {} skills, every ordered pair; {} trials per rule; request {:.0f}-{:.0f} s into the first skill (40-80 % of a "
                "shorter episode); success: "
                "the second takes over within {:.0f} s and stays up {:.0f} s with its score above {:.1f} over the last second",
@@ -216,11 +223,12 @@ std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>
   bool first = true;
   (void)measure_transitions(skills, o, [&](const TransitionCell& c) {
     spdlog::info("    {} -> {}  {:<11} {}  success {:3.0f} % ({} of {}), switched {}, fell {}, wait {:.2f} s", c.from, c.to, c.rule,
-                 c.rule == "score" ? fmt::format("tau {:.1f}", c.threshold) : std::string(7, ' '), 100.0 * c.success_rate(), c.succeeded,
+                 c.rule != "immediately" ? fmt::format("tau {:4.1f}", c.threshold) : std::string(8, ' '), 100.0 * c.success_rate(), c.succeeded,
                  c.trials, c.switched, c.fell, c.mean_wait);
-    json += fmt::format("{}{{\"from\": {}, \"to\": {}, \"rule\": \"{}\", \"threshold\": {}, \"trials\": {}, \"switched\": {}, "
+    json += fmt::format("{}{{\"from\": {}, \"to\": {}, \"rule\": \"{}\", \"threshold\": {}, {}\"trials\": {}, \"switched\": {}, "
                         "\"succeeded\": {}, \"fell\": {}, \"success_rate\": {}, \"mean_wait\": {}}}",
-                        first ? "" : ", ", json_string(c.from), json_string(c.to), c.rule, json_number(c.threshold), c.trials, c.switched,
+                        first ? "" : ", ", json_string(c.from), json_string(c.to), c.rule, json_number(c.threshold),
+                        c.rule == "value" ? "\"value_threshold\": " + json_number(c.value_threshold) + ", " : std::string(), c.trials, c.switched,
                         c.succeeded, c.fell, json_number(c.success_rate()), json_number(c.mean_wait));
     first = false;
   });
@@ -340,10 +348,18 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   ev->add_option("--transitions", args->transitions,
                  "other skills of the same character (model directories): seed 004's transition test between every ordered pair "
-                 "(score rule at tau -0.6, -0.4, ..., 1, and switching at once)")
+                 "(the rules of --transition-rules at each tau of --transition-taus)")
       ->delimiter(',')
       ->check(CLI::ExistingDirectory);
   ev->add_option("--transition-trials", args->transition_trials, "trials per pair, rule and tau")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_option("--transition-rules", args->transition_rules,
+                 "score (seed 004: the target's discriminators), value (the target's value over its own mean), matching (pose to the "
+                 "target clip's nearest frame), immediately")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::IsMember({"score", "value", "matching", "immediately"}));
+  ev->add_option("--transition-taus", args->transition_taus, "the thresholds tau of the score, value and matching rules (default -0.6,-0.4,...,1)")
+      ->delimiter(',');
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();

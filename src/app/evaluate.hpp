@@ -22,6 +22,8 @@ struct EvalArgs {
   std::vector<std::string> settings;  // env.KEY=VALUE overrides of the run's config, in memory
   std::vector<std::filesystem::path> transitions;  // other skills of the character: switch to and from each
   int transition_trials = 20;
+  std::vector<std::string> transition_rules{"score", "value", "matching", "immediately"};
+  std::vector<double> transition_taus;  // empty: TransitionOptions::thresholds
 };
 
 // Measures the run or model directory `args.run` as `mimic eval` does: a table on the terminal,

@@ -5,6 +5,7 @@
 #include <random>
 #include <tuple>
 
+#include "control/pose_matching.hpp"
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
 #include "env/character_env.hpp"
@@ -122,6 +123,10 @@ struct Controller::Impl {
   }
   // The rule's figure for `target` in the current state.
   double measure(std::size_t target, SwitchRule::By by);
+  // Skill `target`'s clips as a pose matcher (made on first use, from the clips its starts are
+  // drawn from: every start group's, or its tracking reference).
+  std::vector<std::unique_ptr<PoseMatcher>> matchers;
+  const PoseMatcher& matcher(std::size_t target);
 
   // Before a step: the push's part of it on the active character's root, beside its own pushes.
   void apply_push() {
@@ -218,7 +223,29 @@ StepInfo Controller::step() {
   return info;
 }
 
+const PoseMatcher& Controller::Impl::matcher(std::size_t target) {
+  matchers.resize(skills.size());
+  if (matchers[target]) return *matchers[target];
+  const std::unique_ptr<Env> probe = skills[target]->impl().factory();
+  CharacterEnv* c = character_of(*probe);
+  if (!c) throw Error("skill '" + skills[target]->name() + "': pose matching needs a character environment");
+  std::vector<std::shared_ptr<const Clip>> held;
+  std::vector<const Clip*> clips;
+  std::mt19937_64 local(1);
+  for (int g = 0; g < std::max(1, c->start_groups()); ++g) {
+    if (c->start_groups() > 1) c->choose_start_group(g);
+    (void)c->reset(local);
+    const Clip* clip = c->start_source().clip ? c->start_source().clip.get() : c->reference();
+    if (c->start_source().clip) held.push_back(c->start_source().clip);
+    if (clip && std::find(clips.begin(), clips.end(), clip) == clips.end()) clips.push_back(clip);
+  }
+  if (clips.empty()) throw Error("skill '" + skills[target]->name() + "': pose matching needs the clips its starts come from (init: mocap), or a reference");
+  matchers[target] = std::make_unique<PoseMatcher>(clips);
+  return *matchers[target];
+}
+
 double Controller::Impl::measure(std::size_t target, SwitchRule::By by) {
+  if (by == SwitchRule::By::Matching) return matcher(target).readiness(character_of(env())->world().pose());
   const Skill& t = *skills[target];
   // The active skill's own environment observes the character already (placing it would restart
   // its episode); another skill's is put in the character's state.
@@ -283,6 +310,7 @@ const SwitchRule& Controller::switch_rule() const { return impl_->rule; }
 
 double Controller::score(const std::string& skill) { return impl_->measure(impl_->index_of(skill), SwitchRule::By::Score); }
 double Controller::value(const std::string& skill) { return impl_->measure(impl_->index_of(skill), SwitchRule::By::Value); }
+double Controller::matching(const std::string& skill) { return impl_->measure(impl_->index_of(skill), SwitchRule::By::Matching); }
 
 const std::string& Controller::skill() const { return impl_->skill().name(); }
 const std::vector<std::shared_ptr<const Skill>>& Controller::skills() const { return impl_->skills; }

@@ -69,18 +69,38 @@ double episode_seconds(const std::shared_ptr<const Skill>& skill, std::uint64_t 
   return steps * c.control_dt();
 }
 
+// `skill`'s mean value estimate of the states of its own first episode under `seed` (at most
+// `cap` seconds): the scale of the value rule's threshold.
+double mean_own_value(const std::shared_ptr<const Skill>& skill, std::uint64_t seed, double cap) {
+  Controller c({skill}, seed);
+  const int most = static_cast<int>(std::lround(cap / c.control_dt()));
+  double sum = c.value(skill->name());
+  int n = 1;
+  for (int steps = 0; steps < most && !c.step().episode_over; ++steps, ++n) sum += c.value(skill->name());
+  return sum / n;
+}
+
 }  // namespace
 
 std::vector<TransitionCell> measure_transitions(const std::vector<std::shared_ptr<const Skill>>& skills, const TransitionOptions& o,
                                                 const std::function<void(const TransitionCell&)>& progress) {
   if (skills.size() < 2) throw Error("transitions: two or more skills are needed");
+  if (!o.score_rule && !o.value_baseline && !o.matching_baseline && !o.immediate_baseline) throw Error("transitions: no rule to measure");
   if (o.trials < 1 || !(o.latest_request >= o.earliest_request) || o.earliest_request < 0 || !(o.hold_seconds > 0))
     throw Error("transitions: trials >= 1, 0 <= earliest request <= latest request, and a hold > 0 s are needed");
   for (const auto& s : skills)
     if (s->discriminators().empty()) throw Error("transitions: skill '" + s->name() + "' has no discriminator to score with");
   std::vector<std::pair<std::string, double>> rules;
-  for (double tau : o.thresholds) rules.emplace_back("score", tau);
+  for (const char* rule : {"score", "value", "matching"}) {
+    const std::string r = rule;
+    if ((r == "score" && !o.score_rule) || (r == "value" && !o.value_baseline) || (r == "matching" && !o.matching_baseline)) continue;
+    for (double tau : o.thresholds) rules.emplace_back(rule, tau);
+  }
   if (o.immediate_baseline) rules.emplace_back("immediately", 0.0);
+  // The value rule's scale: each skill's mean value estimate over its own first episode.
+  std::vector<double> own_value(skills.size(), 0.0);
+  if (o.value_baseline)
+    for (std::size_t j = 0; j < skills.size(); ++j) own_value[j] = mean_own_value(skills[j], o.seed, o.latest_request + 1.0);
   std::vector<TransitionCell> cells;
   for (std::size_t i = 0; i < skills.size(); ++i) {
     for (std::size_t j = 0; j < skills.size(); ++j) {
@@ -93,8 +113,11 @@ std::vector<TransitionCell> measure_transitions(const std::vector<std::shared_pt
         const std::uint64_t pair_seed = o.seed * 1'000'003 + i * 1'009 + j;
         Controller c({from, to}, pair_seed);
         SwitchRule r;
-        r.by = rule == "score" ? SwitchRule::By::Score : SwitchRule::By::Immediately;
-        r.threshold = tau;
+        r.by = rule == "score" ? SwitchRule::By::Score
+               : rule == "value" ? SwitchRule::By::Value
+               : rule == "matching" ? SwitchRule::By::Matching
+                                    : SwitchRule::By::Immediately;
+        r.threshold = rule == "value" ? tau * own_value[j] : tau;
         r.time_limit_seconds = o.time_limit_seconds;
         c.set_switch_rule(r);
         std::mt19937_64 rng(pair_seed);
@@ -103,6 +126,7 @@ std::vector<TransitionCell> measure_transitions(const std::vector<std::shared_pt
         const double latest = std::min(o.latest_request, 0.8 * lasts), earliest = std::min(o.earliest_request, 0.4 * lasts);
         std::uniform_real_distribution<double> when(earliest, std::max(earliest, latest));
         TransitionCell cell{from->name(), to->name(), rule, tau};
+        cell.value_threshold = rule == "value" ? r.threshold : 0.0;
         double waits = 0.0;
         for (int k = 0; k < o.trials; ++k) {
           Trial t;

@@ -25,14 +25,20 @@ struct TransitionOptions {
   // tau of the score rule: seed 004's 0 to 1, and below 0, where skills trained apart score each
   // other's motion.
   std::vector<double> thresholds = {-0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0};
+  bool score_rule = true;                         // seed 004's rule at each threshold
   bool immediate_baseline = true;                 // also switch at once (the rule without a check)
+  // Seed 004's other baselines, at the same thresholds: by the target's value (its value network's
+  // estimate at least tau times its mean estimate over its own first episode), and by pose
+  // matching (SwitchRule::By::Matching: readiness at least tau).
+  bool value_baseline = true, matching_baseline = true;
   double time_limit_seconds = 2.0;                // a request not granted by then fails the trial
   std::uint64_t seed = 1;
 };
 
 struct TransitionCell {
-  std::string from, to, rule;  // rule: "score" or "immediately"
-  double threshold = 0.0;      // tau (score rule)
+  std::string from, to, rule;  // rule: "score", "value", "matching" or "immediately"
+  double threshold = 0.0;      // tau (the value rule's is over the target's mean value: value_threshold is what it compared)
+  double value_threshold = 0.0;
   int trials = 0;
   int switched = 0;            // requests granted within the time limit
   int succeeded = 0;           // granted, then up and performing through the hold
