@@ -45,6 +45,20 @@ EvalSummary read_eval_json(const std::filesystem::path& path) {
       s.max_frames.push_back(number_or_nan(r, p, "max_frames", "a robustness point"));
     }
   }
+  if (const YAML::Node tr = root["transitions"]) {
+    const YAML::Node cells = r.member(tr, "cells", "\"transitions\"");
+    if (!cells.IsSequence()) r.fail(cells, "\"transitions\" \"cells\": expected a list");
+    for (const YAML::Node& c : cells) {
+      EvalSummary::Transition t;
+      t.from = r.text(r.member(c, "from", "a transition cell"), "\"from\"");
+      t.to = r.text(r.member(c, "to", "a transition cell"), "\"to\"");
+      t.rule = r.text(r.member(c, "rule", "a transition cell"), "\"rule\"");
+      t.threshold = number_or_nan(r, c, "threshold", "a transition cell");
+      t.success_rate = r.number(r.member(c, "success_rate", "a transition cell"), "\"success_rate\"");
+      t.mean_wait = number_or_nan(r, c, "mean_wait", "a transition cell");
+      s.transitions.push_back(std::move(t));
+    }
+  }
   return s;
 }
 

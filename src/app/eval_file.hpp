@@ -13,6 +13,11 @@ struct EvalSummary {
   double error_mean = NAN, error_std = NAN, normalised_return = NAN, progress = NAN, episode_length = NAN, return_mean = NAN;
   long falls = -1, down = -1, trials = 0;
   std::vector<double> masses, frames, frames_std, max_frames;  // robustness (NaN: not in the file)
+  struct Transition {  // one cell of the transition test (mimic eval --transitions)
+    std::string from, to, rule;
+    double threshold = NAN, success_rate = NAN, mean_wait = NAN;
+  };
+  std::vector<Transition> transitions;
 };
 
 // Error naming the file when it is not such a file.

@@ -4,9 +4,11 @@
 #include <mujoco/mujoco.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "app/commands.hpp"
@@ -14,7 +16,6 @@
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "core/text_scanner.hpp"
 #include "render/offscreen.hpp"
 #include "render/video_writer.hpp"
 #include "render/window.hpp"

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <numeric>
 
 #include "app/commands.hpp"
 #include "app/eval_file.hpp"
@@ -104,11 +106,49 @@ LineChart robustness_chart(const PlotArgs& a) {
   return chart;
 }
 
+// Seed 004 Fig. 10: switch success against the threshold tau, one line per rule, each point the
+// mean over the file's ordered pairs of skills (switching at once: flat, it has no tau); with
+// --y wait, the mean wait from request to take-over over the pairs where any request was granted.
+LineChart transitions_chart(const PlotArgs& a) {
+  if (a.inputs.size() != 1) throw Error("plot: transition curves come from one evaluation file");
+  const EvalSummary e = read_eval_json(a.inputs.front());
+  const bool wait = a.y == "wait";
+  if (!wait && a.y != "success" && a.y != "return")  // ("return": --y's default, for learning curves)
+    throw Error("--y: transition curves plot 'success' (the default) or 'wait'");
+  LineChart chart;
+  chart.x_label = "threshold tau";
+  chart.y_label = wait ? "mean wait from request to take-over (s), over the pairs" : "switch success (%), mean over the pairs";
+  chart.title = a.title.empty() ? "Switching between skills" : a.title;
+  std::map<std::string, std::map<double, std::vector<double>>> by_rule;  // rule -> tau -> figures of the pairs
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& t : e.transitions) {
+    const double y = wait ? t.mean_wait : 100.0 * t.success_rate;
+    if (t.rule != "immediately") lo = std::min(lo, t.threshold), hi = std::max(hi, t.threshold);
+    if (std::isfinite(y)) by_rule[t.rule][t.rule == "immediately" ? 0.0 : t.threshold].push_back(y);
+  }
+  if (e.transitions.empty()) throw Error(a.inputs.front().string() + ": no transition figures (evaluate with mimic eval --transitions)");
+  for (const char* rule : {"score", "value", "matching", "immediately"}) {
+    const auto it = by_rule.find(rule);
+    if (it == by_rule.end()) continue;
+    ChartSeries s{std::string(rule) == "immediately" ? "at once" : std::string("by ") + rule, {}, {}};
+    for (const auto& [tau, ys] : it->second) {
+      const double mean = std::accumulate(ys.begin(), ys.end(), 0.0) / static_cast<double>(ys.size());
+      if (std::string(rule) == "immediately" && std::isfinite(lo)) {
+        s.x = {lo, hi}, s.y = {mean, mean};
+      } else {
+        s.x.push_back(tau), s.y.push_back(mean);
+      }
+    }
+    chart.series.push_back(std::move(s));
+  }
+  return chart;
+}
+
 }  // namespace
 
 void add_report_commands(CLI::App& app) {
   auto plot_args = std::make_shared<PlotArgs>();
-  CLI::App* plot = app.add_subcommand("plot", "learning curves (runs' metrics.csv) or robustness curves (mimic eval --json files) as .svg or .png");
+  CLI::App* plot = app.add_subcommand("plot", "learning curves (runs' metrics.csv), robustness or transition curves (mimic eval --json files) as .svg or .png");
   plot->add_option("inputs", plot_args->inputs, "run directories or metrics.csv files; or evaluation .json files")
       ->required()
       ->check(CLI::ExistingPath);
@@ -124,9 +164,15 @@ void add_report_commands(CLI::App& app) {
     const auto is_json = [](const std::filesystem::path& p) { return p.extension() == ".json"; };
     const std::size_t json = static_cast<std::size_t>(std::count_if(a.inputs.begin(), a.inputs.end(), is_json));
     if (json != 0 && json != a.inputs.size()) throw Error("plot: give either runs (learning curves) or evaluation .json files (robustness), not both");
-    const LineChart chart = json ? robustness_chart(a) : learning_chart(a);
+    bool transitions = false;
+    if (json == 1) {
+      const EvalSummary only = read_eval_json(a.inputs.front());
+      transitions = only.masses.empty() && !only.transitions.empty();
+    }
+    const LineChart chart = transitions ? transitions_chart(a) : json ? robustness_chart(a) : learning_chart(a);
     write_line_chart(a.out, chart);
-    spdlog::info("wrote {} ({} input(s), {})", a.out.string(), a.inputs.size(), json ? "robustness" : a.y + " vs " + a.x);
+    spdlog::info("wrote {} ({} input(s), {})", a.out.string(), a.inputs.size(),
+                 transitions ? "transitions" : json ? "robustness" : a.y + " vs " + a.x);
   });
 
   struct TableArgs {

@@ -55,6 +55,26 @@ bad "two skills are named 'humanoid_walk_iccgan'" --recover "$walk" --headless -
 [ ! -e "$out/never.json" ] || fail "a failed play wrote its events"
 (unset DISPLAY; bad "DISPLAY is not set: run with --headless, or under xvfb-run" --seconds 1)
 
+# The transition test's rules and its curves (mimic eval --transitions, mimic plot): one trial a
+# rule, tau 1.01 (above any score or pose-matching readiness: nothing is granted by those).
+"$mimic" eval "$walk" --episodes 1 --trials 1 --transitions "$run" --transition-trials 1 --transition-taus 1.01 \
+  --transition-rules score,matching,immediately --json "$out/transitions.json" > "$out/transitions.log" 2>&1 ||
+  { cat "$out/transitions.log"; fail "mimic eval --transitions"; }
+cells=$(tr -d ' \n' < "$out/transitions.json")
+for rule in score matching; do
+  [[ $cells == *"\"rule\":\"$rule\",\"threshold\":1.01,\"trials\":1,\"switched\":0"* ]] || fail "the $rule rule at tau 1.01 granted a request: $cells"
+done
+[[ $cells == *'"rule":"immediately","threshold":0,"trials":1,"switched":1'* ]] || fail "switching at once did not switch: $cells"
+[[ $cells == *'"rule":"value"'* ]] && fail "--transition-rules left out the value rule, but it ran: $cells"
+"$mimic" plot "$out/transitions.json" -o "$out/transitions.svg" > "$out/plot.log" 2>&1 || { cat "$out/plot.log"; fail "mimic plot of transitions"; }
+for label in "by score" "by matching" "at once" "threshold tau" "switch success"; do
+  grep -q "$label" "$out/transitions.svg" || fail "the transition chart has no '$label'"
+done
+"$mimic" plot "$out/transitions.json" --y wait -o "$out/waits.svg" > "$out/plot.log" 2>&1 || { cat "$out/plot.log"; fail "mimic plot --y wait"; }
+grep -q "mean wait" "$out/waits.svg" || fail "the wait chart has no 'mean wait'"
+if "$mimic" eval "$walk" --transitions "$run" --transition-rules nearest > "$out/bad.log" 2>&1; then fail "an unknown rule was taken"; fi
+grep -q "nearest not in" "$out/bad.log" || { cat "$out/bad.log"; fail "--transition-rules nearest: no error naming it"; }
+
 # 2. The window under Xvfb, a key pressed on it.
 if ! command -v xvfb-run > /dev/null || ! command -v xdotool > /dev/null; then
   echo "SKIP: the window test needs xvfb-run and xdotool (scripts/setup.sh installs them)"; exit 77
