@@ -180,6 +180,17 @@ void run_play(const Args& a) {
     if (script.empty()) throw Error("play --headless: give --seconds, or a --script (it then runs 2 s past its last key)");
     seconds = script.back().t + 2.0;
   }
+  // What would fail later, before the models load: no display for the window, two skills named alike.
+  if (!a.headless) Window::check_display();
+  std::vector<std::string> names_seen;
+  for (const auto& list : {&a.models, &a.recover})
+    for (const auto& dir : *list) {
+      const std::filesystem::path full = std::filesystem::absolute(dir).lexically_normal();  // (as Skill::load names it)
+      const std::string name = full.has_filename() ? full.filename().string() : full.parent_path().filename().string();
+      if (std::find(names_seen.begin(), names_seen.end(), name) != names_seen.end())
+        throw Error("play: two skills are named '" + name + "' (a skill is named by its directory; give each model once)");
+      names_seen.push_back(name);
+    }
   PlayOptions o;
   o.rule.by = a.rule == "value" ? SwitchRule::By::Value : a.rule == "immediately" ? SwitchRule::By::Immediately : SwitchRule::By::Score;
   o.rule.threshold = a.tau;

@@ -48,13 +48,25 @@ struct Window::Impl {
   }
 };
 
+namespace {
+
+void init_glfw() {
+  if (glfwInit()) return;
+  const char* display = std::getenv("DISPLAY");
+  throw Error(std::string("cannot open a window: ") + glfw_error() +
+              (display && *display ? "" : " (DISPLAY is not set: run with --headless, or under xvfb-run)"));
+}
+
+}  // namespace
+
+void Window::check_display() {
+  init_glfw();
+  glfwTerminate();
+}
+
 Window::Window(const mjModel_* model, int width, int height, const std::string& title) : impl_(std::make_unique<Impl>()) {
   if (width < 16 || height < 16 || width > 8192 || height > 8192) throw Error("window size must be 16..8192 pixels");
-  const char* display = std::getenv("DISPLAY");
-  if (!glfwInit()) {
-    throw Error(std::string("cannot open a window: ") + glfw_error() +
-                (display && *display ? "" : " (DISPLAY is not set: run with --headless, or under xvfb-run)"));
-  }
+  init_glfw();
   glfwWindowHint(GLFW_SAMPLES, 4);
   glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
   impl_->window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);

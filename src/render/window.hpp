@@ -20,6 +20,9 @@ class Window {
   Window(const mjModel_* model, int width, int height, const std::string& title);
   ~Window();
   Window(const Window&) = delete;
+  // Throws the constructor's Error when no window could be opened (no display), before a program
+  // spends time on what it would show.
+  static void check_display();
   Window& operator=(const Window&) = delete;
 
   // Handles the window system's events; returns the keys pressed since the last call, by name:
