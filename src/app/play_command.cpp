@@ -225,9 +225,11 @@ void run_play(const Args& a) {
       spdlog::info("{:7.2f} s  {} {}", e.t, e.event, e.skill);
     }
   };
-  auto due_keys = [&] {
+  // The script's keys due at frame `i` (its times count the frames shown, paused ones too, so that
+  // a script can pause and go on).
+  auto due_keys = [&](long long i) {
     std::vector<std::string> keys;
-    for (; next_line < script.size() && script[next_line].t <= session.time() + 1e-9; ++next_line) keys.push_back(script[next_line].key);
+    for (; next_line < script.size() && script[next_line].t <= static_cast<double>(i) * dt + 1e-9; ++next_line) keys.push_back(script[next_line].key);
     return keys;
   };
   std::vector<std::uint8_t> rgb;
@@ -236,7 +238,7 @@ void run_play(const Args& a) {
     OffscreenRenderer renderer(model, a.width, a.height);
     std::unique_ptr<VideoWriter> video = a.output.empty() ? nullptr : std::make_unique<VideoWriter>(a.output, a.width, a.height, 1.0 / dt);
     for (long long i = 0; i < total_steps && !view.quit; ++i) {
-      for (const auto& k : due_keys()) press(k, session, view);
+      for (const auto& k : due_keys(i)) press(k, session, view);
       if (!view.paused) session.step();
       log_events();
       if (video) {
@@ -255,7 +257,7 @@ void run_play(const Args& a) {
     const auto frame = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(dt));
     for (long long i = 0; (total_steps < 0 || i < total_steps) && !view.quit && !window.closed(); ++i) {
       std::vector<std::string> keys = window.poll();
-      for (auto& k : due_keys()) keys.push_back(std::move(k));
+      for (auto& k : due_keys(i)) keys.push_back(std::move(k));
       for (const auto& k : keys) press(k, session, view);
       if (view.record_toggled) {
         view.record_toggled = false;

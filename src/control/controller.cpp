@@ -54,6 +54,7 @@ struct Controller::Impl {
   int delay_left = 0;       // steps before a request may be granted
   Eigen::Vector3d push_force = Eigen::Vector3d::Zero();
   double push_left = 0.0;   // seconds of the push still to come
+  bool pushing = false;     // the active environment holds a push of ours
 
   Env& env() { return *envs[active]; }
   const Skill& skill() const { return *skills[active]; }
@@ -138,7 +139,6 @@ struct Controller::Impl {
     pushing = push_left > 0;
     push_left = std::max(0.0, push_left - dt);
   }
-  bool pushing = false;  // the active environment holds a push of ours
 
   void stack() {
     const Skill& s = skill();

@@ -37,6 +37,13 @@ done
 [ -s "$out/session.mp4" ] || fail "no video"
 grep -q "wrote $out/session.mp4 (36 frames)" "$out/headless.log" || { cat "$out/headless.log"; fail "1.2 s at 30 Hz is 36 frames"; }
 
+# A script's times count the frames shown, paused ones too: paused from 0.2 s to 0.5 s, the
+# request at 0.6 s comes after 0.3 s of the session.
+printf '0.2 space\n0.5 space\n0.6 2\n' > "$out/paused.txt"
+play --headless --script "$out/paused.txt" --seconds 0.8 --json "$out/paused.json" > "$out/paused.log" 2>&1 || { cat "$out/paused.log"; fail "a paused session"; }
+events=$(tr -d ' \n' < "$out/paused.json")
+[[ $events == *'{"t":0.3,"event":"request","skill":"humanoid_run_iccgan_straight_loop"}'* ]] || fail "paused 0.3 s, the request at 0.6 s is not at 0.3 s of the session: $events"
+
 # Named errors, nothing written.
 bad() {  # expected message, then the arguments
   local want=$1; shift
