@@ -43,6 +43,10 @@ TEST(DownRule, TenFramesBelowHalfTheStandingHeightAndNotACrouch) {
   // Up again; a second fall is said again.
   for (int i = 0; i < 9; ++i) EXPECT_FALSE(rule.update(0.1));
   EXPECT_TRUE(rule.update(0.1));
+  // A fall body on the ground is lying too, whatever the root's height (on a pile of cubes).
+  DownRule contact(0.9);
+  for (int i = 0; i < 9; ++i) EXPECT_FALSE(contact.update(0.8, true));
+  EXPECT_TRUE(contact.update(0.8, true));
   // Another standing height and other settings.
   rule.restart(2.0);
   EXPECT_FALSE(rule.down());

@@ -78,6 +78,7 @@ struct StepInfo {
   bool episode_over = false;  // the skill's environment ended the episode (below: why)
   bool fell = false;          // a fall or a drift from the reference: a failure
   std::string ending;         // "fall", "time limit", "clip end", "drift"; empty while it goes on
+  bool ground_contact = false;  // a body whose ground contact the skill counts as a fall touches the ground now
   std::string switched_to;    // a requested skill took over after this step (it acts from the next)
   std::string dropped;        // a request that no step allowed within the rule's time limit
   double target_score = std::nan("");  // the pending request's figure at this step, as the rule measures it

@@ -200,6 +200,7 @@ StepInfo Controller::step() {
   info.episode_over = r.done();
   info.fell = is_failure(r.termination);
   info.ending = ending_name(r.termination);
+  if (const CharacterEnv* character = character_of(c.env())) info.ground_contact = character->fall_contact();
   if (c.delay_left > 0) --c.delay_left;
   if (c.pending < c.skills.size()) {
     ++c.waited;

@@ -13,8 +13,8 @@ DownRule::DownRule(double standing_height, double height, int frames) : standing
   if (!(height > 0 && height < 1) || frames < 1) throw Error("down rule: the height must be a fraction in (0, 1) and the frames >= 1");
 }
 
-bool DownRule::update(double root_height) {
-  if (root_height >= height_ * standing_) {
+bool DownRule::update(double root_height, bool fall_contact) {
+  if (!fall_contact && root_height >= height_ * standing_) {
     lying_ = 0;
     // Up again once as many frames in a row are above as it took to be down (a root that bounces
     // while the character lies is not a new fall).
@@ -125,7 +125,7 @@ void PlaySession::step() {
     else
       log("dropped", info.dropped);
   }
-  if (down_.update(controller_.root_position().z())) {
+  if (down_.update(controller_.root_position().z(), info.ground_contact)) {
     log("down", controller_.skill());
     if (!options_.recovery.empty()) start_recovery();
   }

@@ -14,14 +14,16 @@
 
 namespace mimic {
 
-// The robustness protocol's rule for a character that is down: its root below `height` times its
-// standing height for `frames` control steps in a row. A crouch stays above it. It is up again
-// after as many steps in a row above that height.
+// The robustness protocol's rule for a character that is down: lying — a body whose ground
+// contact counts as a fall on the ground, or its root below `height` times its standing height —
+// for `frames` control steps in a row. A crouch on its feet is neither. It is up again after as
+// many steps in a row not lying.
 class DownRule {
  public:
   DownRule(double standing_height, double height = 0.5, int frames = 10);
-  // One control step's root height; true at the step the character becomes down (once per fall).
-  bool update(double root_height);
+  // One control step's root height and fall contact; true at the step the character becomes down
+  // (once per fall).
+  bool update(double root_height, bool fall_contact = false);
   bool down() const { return down_; }
   void restart(double standing_height);
 
