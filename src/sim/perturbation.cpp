@@ -68,6 +68,12 @@ void ProjectileLauncher::add_to(MjcfOptions& opts, const ProjectileSpec& spec, d
   check(spec);
   const int n = spec.pool > 0 ? spec.pool : projectile_pool_size(spec, control_hz);
   opts.visual_extent = 3.0;  // (the parked cubes are a kilometre away; a person is a metre or two)
+  // Room for each cube's contacts (a box on the floor makes up to 4, a few more against the
+  // character) and their constraint rows (4 a contact of condim 3). Sized by the pool, not
+  // fixed: MuJoCo 2.2 clears a buffer of about njmax² numbers for every MjData it makes, 200 MB
+  // at njmax 4,000, which made loading a skill with 4 cubes take seconds.
+  opts.max_contacts += 8 * n;
+  opts.max_constraints += 32 * n;
   const double h = spec.size / 2;
   for (int k = 0; k < n; ++k) {
     const Vec3 p = park_position(k);

@@ -64,7 +64,7 @@ struct ProjectileStats {
 // collide with the character and the ground but not with each other (contype 4, conaffinity 3).
 class ProjectileLauncher {
  public:
-  // Adds the pool's MJCF to `opts.extra_worldbody`; no-op unless spec.enabled.
+  // Adds the pool's MJCF to `opts.extra_worldbody` and room for its contacts to `opts`; no-op unless spec.enabled.
   static void add_to(MjcfOptions& opts, const ProjectileSpec& spec, double control_hz);
   // Binds to a World built with add_to's options; throws Error if the pool or target is missing.
   ProjectileLauncher(const World& world, const ProjectileSpec& spec);
