@@ -6,6 +6,10 @@
 # LibTorch, 1 s in the release build and 3.3 s under ASan with leak checking, which was a quarter
 # of the suite's time. A failing suite's output names the failing test; to run one test, run the
 # program with --gtest_filter=Suite.Name.
+#
+# A suite named `...Learning` holds long learning checks (a policy trained for dozens of
+# iterations until it does the task): it gets the CTest label `learning`, which the sanitizer
+# pass of scripts/test.sh leaves out (the same code runs under the sanitizers in the short tests).
 function(mimic_add_test_suites target)
   cmake_parse_arguments(ARG "" "TIMEOUT" "ENVIRONMENT" ${ARGN})
   set(script "${CMAKE_CURRENT_BINARY_DIR}/${target}_suites.cmake")
@@ -29,6 +33,9 @@ foreach(line IN LISTS lines)
     set(suite \"\${CMAKE_MATCH_1}\")
     add_test(\"\${suite}\" \"\${program}\" \"--gtest_filter=\${suite}.*\")
     set_tests_properties(\"\${suite}\" PROPERTIES TIMEOUT ${ARG_TIMEOUT} ENVIRONMENT \"\${environment}\")
+    if(suite MATCHES \"Learning\$\")
+      set_tests_properties(\"\${suite}\" PROPERTIES LABELS learning)
+    endif()
   endif()
 endforeach()
 ")

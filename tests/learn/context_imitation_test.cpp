@@ -112,7 +112,7 @@ TEST(AdversarialConfig, MismatchedPairsEachFileWithTheOtherContexts) {
 
 // Seed 000's context learnt, not only plumbed: one policy, two behaviours (the orbit of radius 1
 // and the orbit of radius 2) from two expert files, the one-hot context choosing between them.
-TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
+TEST(AdversarialLearning, OnePolicyLearnsTwoBehavioursFromTheContext) {
   const auto dir = test::temp_dir("gail_contexts");
   const auto [small, large, experts] = two_orbits(dir, 20);
   const int iterations = 120;
@@ -143,7 +143,7 @@ TEST(AdversarialImitation, OnePolicyLearnsTwoBehavioursFromTheContext) {
 
 // The same two behaviours with one discriminator per context (per_context: true): each learns
 // from its context's file and samples alone, and each rates its own file above the other's.
-TEST(AdversarialImitation, ADiscriminatorPerContextTeachesBothBehaviours) {
+TEST(AdversarialLearning, ADiscriminatorPerContextTeachesBothBehaviours) {
   const auto dir = test::temp_dir("gail_per_context");
   const auto [small, large, experts] = two_orbits(dir, 20);
   TrainOptions o = context_oscillator_options();

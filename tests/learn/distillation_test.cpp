@@ -77,7 +77,7 @@ TEST(Distillation, TeachersMustFitTheStudentsContextsAndActions) {
 
 // Learning, not only running: a student that starts acting the same in both contexts ends up
 // holding each teacher's orbit under that teacher's context, from its own states alone.
-TEST(Distillation, OneStudentLearnsTwoTeachersBehavioursFromItsOwnStates) {
+TEST(DistillationLearning, OneStudentLearnsTwoTeachersBehavioursFromItsOwnStates) {
   TrainOptions o;
   o.env_factory = [] { return std::make_unique<ContextEnv>(std::make_unique<test::OscillatorEnv>(), 2, 10); };
   Trainer student(parse_train_config("collect: {envs: 4, samples: 64}\npolicy: {hidden: [32, 32], activation: tanh, log_std: -1.5}\n", "s.yaml"),

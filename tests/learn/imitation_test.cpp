@@ -237,7 +237,7 @@ struct LearningCurve {
 
 }  // namespace
 
-TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) {
+TEST(AdversarialLearning, PointMassLearnsToOscillateFromTheDiscriminatorAlone) {
   const auto dir = test::temp_dir("gail_oscillator");
   write_demonstrations(dir / "expert.csv", oscillator_expert(20));
   // A quick discriminator and a slow policy, so that the discriminator leads early on and the
@@ -265,7 +265,7 @@ TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheDiscriminatorAlone) 
 // Seed 004's ensemble (hinge heads over shared layers, a gradient penalty on interpolates, reward
 // the mean of the clipped heads), the humanoid's method, learnt end to end on the point mass: the
 // policy, which never sees the task, comes to hold the expert's orbit from the ensemble alone.
-TEST(AdversarialImitation, PointMassLearnsToOscillateFromTheEnsembleAlone) {
+TEST(AdversarialLearning, PointMassLearnsToOscillateFromTheEnsembleAlone) {
   const auto dir = test::temp_dir("ensemble_oscillator");
   write_demonstrations(dir / "expert.csv", oscillator_expert(20));
   const int iterations = 60;

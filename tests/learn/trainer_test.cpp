@@ -597,7 +597,7 @@ TEST(Trainer, DivergenceStopsTheRunWithADiagnosticAndKeepsTheLastCheckpoint) {
   EXPECT_EQ(reload.iteration(), 1);
 }
 
-TEST(Trainer, WalkerLearnsToMoveForward) {
+TEST(TrainerLearning, WalkerLearnsToMoveForward) {
   // Seed 002's Walker2d task, fixed seed, 16 iterations of 2048 samples (32k samples).
   const std::string text =
       "seed: 1\n"

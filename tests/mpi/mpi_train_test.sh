@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One training run over two ranks, as a cluster user starts it: `mpirun -np 2 mimic train
-# configs/walker_ci.yaml`. It must learn as the one-process test does (Trainer.WalkerLearnsToMoveForward:
+# configs/walker_ci.yaml`. It must learn as the one-process test does (TrainerLearning.WalkerLearnsToMoveForward:
 # the first iteration's return under 20, the last three's mean over 100 and over five times the
 # first); a seed must give the same numbers twice; and a run killed (SIGKILL, mpirun and its ranks)
 # after a checkpoint must resume over two ranks and finish with the numbers of the run never killed;
