@@ -68,12 +68,13 @@ void ProjectileLauncher::add_to(MjcfOptions& opts, const ProjectileSpec& spec, d
   check(spec);
   const int n = spec.pool > 0 ? spec.pool : projectile_pool_size(spec, control_hz);
   opts.visual_extent = 3.0;  // (the parked cubes are a kilometre away; a person is a metre or two)
-  // Room for each cube's contacts (a box on the floor makes up to 4, a few more against the
-  // character) and their constraint rows (4 a contact of condim 3). Sized by the pool, not
-  // fixed: MuJoCo 2.2 clears a buffer of about njmax² numbers for every MjData it makes, 200 MB
-  // at njmax 4,000, which made loading a skill with 4 cubes take seconds.
-  opts.max_contacts += 8 * n;
-  opts.max_constraints += 32 * n;
+  // Room for the cubes' contacts and their constraint rows (4 a contact of condim 3), by the pool.
+  // Measured: at most 16 contacts (64 rows) in 10 s of 100 kg cubes on the walk, 59 (236) with a
+  // get-up writhing among 60 kg ones; MuJoCo prints a warning where the room runs out. Not more:
+  // MuJoCo 2.2 clears about 12 njmax² bytes for every MjData it makes (200 MB at njmax 4,000,
+  // which made loading a skill with cubes take seconds).
+  opts.max_contacts += 2 * n;
+  opts.max_constraints += 8 * n;
   const double h = spec.size / 2;
   for (int k = 0; k < n; ++k) {
     const Vec3 p = park_position(k);
