@@ -1,7 +1,8 @@
 // mimic eval RUN: one measurement for every policy (DESIGN.md section 5): episode return, length
 // and fall rate; for a character with a reference clip (the env's own, or --clip), the imitation
 // error over one cycle from evenly spaced phases and the normalised return; with --robustness,
-// seed 004's projectile test (frames survived per cube mass); with --latency, the policy's
+// seed 004's projectile test (frames survived per cube mass; with --recover, the fraction of the
+// time performing without and with get-up skills); with --latency, the policy's
 // forward-pass time at batch 1 and, for an adversarial run, its discriminators'; with --switch, a
 // policy over behaviour contexts changing behaviour on command. A table on the terminal, and the
 // same figures as JSON with --json.
@@ -25,7 +26,6 @@
 #include "app/run_skill.hpp"
 #include "control/episodes.hpp"
 #include "control/runtime_cost.hpp"
-#include "control/transitions.hpp"
 #include "control/skill_impl.hpp"
 
 namespace mimic::app {
@@ -200,41 +200,6 @@ std::string context_switches(const EvalArgs& args, const std::shared_ptr<const S
   return json + "]";
 }
 
-// Seed 004 section 6.5's transition test between this skill and the others (control/transitions.hpp).
-std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>& skill) {
-  std::vector<std::shared_ptr<const Skill>> skills{skill};
-  for (const auto& other : args.transitions) skills.push_back(run_skill(other, args.settings, /*discriminators=*/true));
-  TransitionOptions o;
-  o.trials = args.transition_trials;
-  o.seed = args.seed;
-  if (!args.transition_taus.empty()) o.thresholds = args.transition_taus;
-  const auto has = [&](const char* rule) { return std::find(args.transition_rules.begin(), args.transition_rules.end(), rule) != args.transition_rules.end(); };
-  if (!has("score") && !has("value") && !has("matching") && !has("immediately")) throw Error("--transition-rules: name at least one rule");
-  o.score_rule = has("score");
-  o.value_baseline = has("value");
-  o.matching_baseline = has("matching");
-  o.immediate_baseline = has("immediately");
-  spdlog::info("  transitions     {} skills, every ordered pair; {} trials per rule; request {:.0f}-{:.0f} s into the first skill (40-80 % of a "
-               "shorter episode); success: "
-               "the second takes over within {:.0f} s and stays up {:.0f} s with its score above {:.1f} over the last second",
-               skills.size(), o.trials, o.earliest_request, o.latest_request, o.time_limit_seconds, o.hold_seconds, o.performing_score);
-  std::string json = ", \"transitions\": {\"hold_seconds\": " + json_number(o.hold_seconds) + ", \"time_limit_seconds\": " +
-                     json_number(o.time_limit_seconds) + ", \"performing_score\": " + json_number(o.performing_score) + ", \"cells\": [";
-  bool first = true;
-  (void)measure_transitions(skills, o, [&](const TransitionCell& c) {
-    spdlog::info("    {} -> {}  {:<11} {}  success {:3.0f} % ({} of {}), switched {}, fell {}, wait {:.2f} s", c.from, c.to, c.rule,
-                 c.rule != "immediately" ? fmt::format("tau {:4.1f}", c.threshold) : std::string(8, ' '), 100.0 * c.success_rate(), c.succeeded,
-                 c.trials, c.switched, c.fell, c.mean_wait);
-    json += fmt::format("{}{{\"from\": {}, \"to\": {}, \"rule\": \"{}\", \"threshold\": {}, {}\"trials\": {}, \"switched\": {}, "
-                        "\"succeeded\": {}, \"fell\": {}, \"success_rate\": {}, \"mean_wait\": {}}}",
-                        first ? "" : ", ", json_string(c.from), json_string(c.to), c.rule, json_number(c.threshold),
-                        c.rule == "value" ? "\"value_threshold\": " + json_number(c.value_threshold) + ", " : std::string(), c.trials, c.switched,
-                        c.succeeded, c.fell, json_number(c.success_rate()), json_number(c.mean_wait));
-    first = false;
-  });
-  return json + "]}";
-}
-
 }  // namespace
 
 void evaluate(const EvalArgs& args) {
@@ -242,6 +207,8 @@ void evaluate(const EvalArgs& args) {
   for (const std::string& setting : args.settings)
     if (setting.rfind("env.", 0) != 0)
       throw Error("--set " + setting + ": eval overrides environment keys only (env.KEY=VALUE, e.g. env.max_seconds=30)");
+  if (!args.recover.empty() && args.masses.empty())
+    throw Error("--recover measures under the projectile test: give the cube masses with --robustness");
   const RunNetworks networks = run_networks(args.run);
   const std::shared_ptr<const Skill> skill = load_skill(args.run, networks.bytes, networks.source, "", args.settings);
   // The episodes training would have evaluated (control/episodes.hpp).
@@ -316,6 +283,7 @@ void evaluate(const EvalArgs& args) {
   if (!args.masses.empty()) json += robustness(args, networks);
   if (!args.switches.empty()) json += context_switches(args, skill);
   if (args.latency) json += latency(args, skill);
+  if (!args.recover.empty()) json += recovery(args);
   if (!args.transitions.empty()) json += transitions(args, run_skill(args.run, args.settings, /*discriminators=*/true));
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
@@ -360,6 +328,13 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::IsMember({"score", "value", "matching", "immediately"}));
   ev->add_option("--transition-taus", args->transition_taus, "the thresholds tau of the score, value and matching rules (default -0.6,-0.4,...,1)")
       ->delimiter(',');
+  ev->add_option("--recover", args->recover,
+                 "get-up skills (model directories) for robustness with recovery: at each --robustness mass, the fraction of "
+                 "--robustness-seconds spent performing without and with them (seed 004 section 6)")
+      ->delimiter(',')
+      ->check(CLI::ExistingDirectory);
+  ev->add_option("--recover-tau", args->recover_tau, "the score at which the skill takes the character back from a get-up")
+      ->capture_default_str();
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();

@@ -59,6 +59,20 @@ EvalSummary read_eval_json(const std::filesystem::path& path) {
       s.transitions.push_back(std::move(t));
     }
   }
+  if (const YAML::Node rec = root["recovery"]) {
+    const YAML::Node masses = r.member(rec, "masses", "\"recovery\"");
+    if (!masses.IsSequence()) r.fail(masses, "\"recovery\" \"masses\": expected a list");
+    for (const YAML::Node& m : masses) {
+      EvalSummary::Recovery p;
+      p.mass = r.number(r.member(m, "mass", "a recovery point"), "\"mass\"");
+      const YAML::Node without = r.member(m, "without", "a recovery point"), with = r.member(m, "with", "a recovery point");
+      p.without = r.number(r.member(without, "performing_mean", "\"without\""), "\"performing_mean\"");
+      p.without_std = number_or_nan(r, without, "performing_std", "\"without\"");
+      p.with = r.number(r.member(with, "performing_mean", "\"with\""), "\"performing_mean\"");
+      p.with_std = number_or_nan(r, with, "performing_std", "\"with\"");
+      s.recovery.push_back(p);
+    }
+  }
   return s;
 }
 

@@ -18,6 +18,10 @@ struct EvalSummary {
     double threshold = NAN, success_rate = NAN, mean_wait = NAN;
   };
   std::vector<Transition> transitions;
+  struct Recovery {  // one cube mass of robustness with recovery (mimic eval --recover): fractions of the time performing
+    double mass = NAN, without = NAN, without_std = NAN, with = NAN, with_std = NAN;
+  };
+  std::vector<Recovery> recovery;
 };
 
 // Error naming the file when it is not such a file.

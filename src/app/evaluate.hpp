@@ -2,8 +2,11 @@
 // `mimic eval`'s measurement as a function: `mimic imitate` evaluates the model it made with it.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "mimic/runtime.hpp"
 
 namespace mimic::app {
 
@@ -24,10 +27,18 @@ struct EvalArgs {
   int transition_trials = 20;
   std::vector<std::string> transition_rules{"score", "value", "matching", "immediately"};
   std::vector<double> transition_taus;  // empty: TransitionOptions::thresholds
+  std::vector<std::filesystem::path> recover;  // get-up skills: robustness with recovery at each mass of `masses`
+  double recover_tau = 0.2;  // the score at which the skill takes the character back from a get-up
 };
 
 // Measures the run or model directory `args.run` as `mimic eval` does: a table on the terminal,
 // and the figures as JSON into args.json where given.
 void evaluate(const EvalArgs& args);
+
+// The measurements in runtime sessions (app/eval_sessions.cpp), each as its JSON member with a
+// leading ", ": the transition test between `skill` and args.transitions, and robustness with
+// recovery by args.recover.
+std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>& skill);
+std::string recovery(const EvalArgs& args);
 
 }  // namespace mimic::app

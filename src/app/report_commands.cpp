@@ -106,6 +106,30 @@ LineChart robustness_chart(const PlotArgs& a) {
   return chart;
 }
 
+// Robustness with recovery (mimic eval --recover): the time spent performing against cube mass,
+// two lines per evaluation (without and with the get-ups), shaded ± one s.d. of the trials.
+LineChart recovery_chart(const PlotArgs& a) {
+  LineChart chart;
+  chart.x_label = "projectile mass (kg)";
+  chart.y_label = "time performing (%, mean, shaded ± s.d. of trials)";
+  chart.title = a.title.empty() ? "Robustness with recovery" : a.title;
+  for (std::size_t i = 0; i < a.inputs.size(); ++i) {
+    const EvalSummary e = read_eval_json(a.inputs[i]);
+    if (e.recovery.empty()) throw Error(a.inputs[i].string() + ": no recovery figures (evaluate with mimic eval --robustness ... --recover GETUP)");
+    for (const bool with : {false, true}) {
+      ChartSeries s{name_of(a, i, a.inputs[i]) + (with ? " with recovery" : " without recovery"), {}, {}};
+      for (const auto& p : e.recovery) {
+        const double y = 100.0 * (with ? p.with : p.without), sd = 100.0 * (with ? p.with_std : p.without_std);
+        s.x.push_back(p.mass), s.y.push_back(y);
+        s.band_low.push_back(std::isfinite(sd) ? std::max(0.0, y - sd) : std::numeric_limits<double>::quiet_NaN());
+        s.band_high.push_back(std::isfinite(sd) ? std::min(100.0, y + sd) : std::numeric_limits<double>::quiet_NaN());
+      }
+      chart.series.push_back(std::move(s));
+    }
+  }
+  return chart;
+}
+
 // Seed 004 Fig. 10: switch success against the threshold tau, one line per rule, each point the
 // mean over the file's ordered pairs of skills (switching at once: flat, it has no tau); with
 // --y wait, the mean wait from request to take-over over the pairs where any request was granted.
@@ -154,7 +178,9 @@ void add_report_commands(CLI::App& app) {
       ->check(CLI::ExistingPath);
   plot->add_option("-o,--output", plot_args->out, "output .svg or .png")->required();
   plot->add_option("--x", plot_args->x, "column on the x axis (learning curves)")->capture_default_str();
-  plot->add_option("--y", plot_args->y, "column on the y axis (learning curves)")->capture_default_str();
+  plot->add_option("--y", plot_args->y,
+                   "column on the y axis (learning curves); for evaluation files: wait (transition waits), performing (robustness with recovery)")
+      ->capture_default_str();
   plot->add_option("--smooth", plot_args->smooth, "moving average over this many iterations")->capture_default_str()->check(CLI::PositiveNumber);
   plot->add_option("--names", plot_args->names, "legend names, one per input (default: the directories' or files' names)");
   plot->add_option("--title", plot_args->title, "chart title");
@@ -169,10 +195,11 @@ void add_report_commands(CLI::App& app) {
       const EvalSummary only = read_eval_json(a.inputs.front());
       transitions = only.masses.empty() && !only.transitions.empty();
     }
-    const LineChart chart = transitions ? transitions_chart(a) : json ? robustness_chart(a) : learning_chart(a);
+    const bool recovery = json && a.y == "performing";
+    const LineChart chart = recovery ? recovery_chart(a) : transitions ? transitions_chart(a) : json ? robustness_chart(a) : learning_chart(a);
     write_line_chart(a.out, chart);
     spdlog::info("wrote {} ({} input(s), {})", a.out.string(), a.inputs.size(),
-                 transitions ? "transitions" : json ? "robustness" : a.y + " vs " + a.x);
+                 recovery ? "robustness with recovery" : transitions ? "transitions" : json ? "robustness" : a.y + " vs " + a.x);
   });
 
   struct TableArgs {

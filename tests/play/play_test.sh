@@ -82,6 +82,19 @@ grep -q "mean wait" "$out/waits.svg" || fail "the wait chart has no 'mean wait'"
 if "$mimic" eval "$walk" --transitions "$run" --transition-rules nearest > "$out/bad.log" 2>&1; then fail "an unknown rule was taken"; fi
 grep -q "nearest not in" "$out/bad.log" || { cat "$out/bad.log"; fail "--transition-rules nearest: no error naming it"; }
 
+# Robustness with recovery (mimic eval --recover, mimic plot --y performing): without cubes the
+# walk performs throughout, with the run as a stand-in get-up or not; without masses, a named error.
+"$mimic" eval "$walk" --episodes 1 --trials 1 --robustness 0 --robustness-trials 1 --robustness-seconds 0.5 --recover "$run" \
+  --json "$out/recovery.json" > "$out/recovery.log" 2>&1 || { cat "$out/recovery.log"; fail "mimic eval --recover"; }
+recovery=$(tr -d ' \n' < "$out/recovery.json")
+[[ $recovery == *'"recovery":{"seconds":0.5,"trials":1,"tau":0.2,'* ]] || fail "no recovery figures: $recovery"
+[[ $recovery == *'{"mass":0,"without":{"performing_mean":1,"performing_std":0,"downs_mean":0},"with":{"performing_mean":1,'* ]] ||
+  fail "the calm walk did not perform throughout: $recovery"
+"$mimic" plot "$out/recovery.json" --y performing -o "$out/recovery.svg" > "$out/plot.log" 2>&1 || { cat "$out/plot.log"; fail "mimic plot --y performing"; }
+grep -q "with recovery" "$out/recovery.svg" || fail "the recovery chart has no 'with recovery' line"
+if "$mimic" eval "$walk" --episodes 1 --recover "$run" > "$out/bad.log" 2>&1; then fail "--recover without --robustness was taken"; fi
+grep -q "give the cube masses with --robustness" "$out/bad.log" || { cat "$out/bad.log"; fail "--recover without masses: no error naming it"; }
+
 # 2. The window under Xvfb, a key pressed on it.
 if ! command -v xvfb-run > /dev/null || ! command -v xdotool > /dev/null; then
   echo "SKIP: the window test needs xvfb-run and xdotool (scripts/setup.sh installs them)"; exit 77

@@ -1,0 +1,87 @@
+// `mimic eval`'s measurements in runtime sessions of several skills (control/): seed 004 §6.5's
+// transition test (--transitions) and robustness with recovery (--recover).
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "app/commands.hpp"
+#include "app/evaluate.hpp"
+#include "app/run_skill.hpp"
+#include "control/performing.hpp"
+#include "control/transitions.hpp"
+#include "core/error.hpp"
+
+namespace mimic::app {
+
+// Seed 004 section 6.5's transition test between this skill and the others (control/transitions.hpp).
+std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>& skill) {
+  std::vector<std::shared_ptr<const Skill>> skills{skill};
+  for (const auto& other : args.transitions) skills.push_back(run_skill(other, args.settings, /*discriminators=*/true));
+  TransitionOptions o;
+  o.trials = args.transition_trials;
+  o.seed = args.seed;
+  if (!args.transition_taus.empty()) o.thresholds = args.transition_taus;
+  const auto has = [&](const char* rule) { return std::find(args.transition_rules.begin(), args.transition_rules.end(), rule) != args.transition_rules.end(); };
+  if (!has("score") && !has("value") && !has("matching") && !has("immediately")) throw Error("--transition-rules: name at least one rule");
+  o.score_rule = has("score");
+  o.value_baseline = has("value");
+  o.matching_baseline = has("matching");
+  o.immediate_baseline = has("immediately");
+  spdlog::info("  transitions     {} skills, every ordered pair; {} trials per rule; request {:.0f}-{:.0f} s into the first skill (40-80 % of a "
+               "shorter episode); success: "
+               "the second takes over within {:.0f} s and stays up {:.0f} s with its score above {:.1f} over the last second",
+               skills.size(), o.trials, o.earliest_request, o.latest_request, o.time_limit_seconds, o.hold_seconds, o.performing_score);
+  std::string json = ", \"transitions\": {\"hold_seconds\": " + json_number(o.hold_seconds) + ", \"time_limit_seconds\": " +
+                     json_number(o.time_limit_seconds) + ", \"performing_score\": " + json_number(o.performing_score) + ", \"cells\": [";
+  bool first = true;
+  (void)measure_transitions(skills, o, [&](const TransitionCell& c) {
+    spdlog::info("    {} -> {}  {:<11} {}  success {:3.0f} % ({} of {}), switched {}, fell {}, wait {:.2f} s", c.from, c.to, c.rule,
+                 c.rule != "immediately" ? fmt::format("tau {:4.1f}", c.threshold) : std::string(8, ' '), 100.0 * c.success_rate(), c.succeeded,
+                 c.trials, c.switched, c.fell, c.mean_wait);
+    json += fmt::format("{}{{\"from\": {}, \"to\": {}, \"rule\": \"{}\", \"threshold\": {}, {}\"trials\": {}, \"switched\": {}, "
+                        "\"succeeded\": {}, \"fell\": {}, \"success_rate\": {}, \"mean_wait\": {}}}",
+                        first ? "" : ", ", json_string(c.from), json_string(c.to), c.rule, json_number(c.threshold),
+                        c.rule == "value" ? "\"value_threshold\": " + json_number(c.value_threshold) + ", " : std::string(), c.trials, c.switched,
+                        c.succeeded, c.fell, json_number(c.success_rate()), json_number(c.mean_wait));
+    first = false;
+  });
+  return json + "]}";
+}
+
+// Seed 004 §6's robustness with recovery: at each cube mass, the skill performs under the
+// projectile test in a play session, without and with the --recover get-ups; the fraction of the
+// time it spends performing (control/performing.hpp).
+std::string recovery(const EvalArgs& args) {
+  PerformingOptions o;
+  o.seconds = args.robustness_seconds;
+  o.trials = args.robustness_trials;
+  o.seed = args.seed;
+  o.rule.threshold = args.recover_tau;
+  spdlog::info("  recovery        the fraction of {:.0f} s spent performing under the cubes, without and with the get-ups ({}); {} trials per "
+               "mass; the skill takes the character back at score >= {:.2f}",
+               o.seconds, args.recover.size(), o.trials, o.rule.threshold);
+  std::string json = ", \"recovery\": {\"seconds\": " + json_number(o.seconds) + ", \"trials\": " + std::to_string(o.trials) +
+                     ", \"tau\": " + json_number(o.rule.threshold) + ", \"get_ups\": [";
+  for (std::size_t i = 0; i < args.recover.size(); ++i) json += (i ? ", " : "") + json_string(args.recover[i].string());
+  json += "], \"masses\": [";
+  for (std::size_t i = 0; i < args.masses.size(); ++i) {
+    const double mass = args.masses[i];
+    std::vector<std::string> settings = args.settings;
+    settings.push_back(mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}");
+    settings.push_back(fmt::format("env.max_seconds={}", o.seconds + 1.0));
+    std::vector<std::shared_ptr<const Skill>> skills{run_skill(args.run, settings, /*discriminators=*/true)};
+    const PerformingReport without = measure_performing(skills, o);
+    for (const auto& get_up : args.recover) skills.push_back(run_skill(get_up, settings, /*discriminators=*/true));
+    const PerformingReport with = measure_performing(skills, o);
+    spdlog::info("    {}  performing {:.2f} +- {:.2f} without recovery ({:.1f} falls a trial), {:.2f} +- {:.2f} with ({:.1f} falls, {:.1f} recovered)",
+                 mass > 0 ? fmt::format("{:6.2f} kg", mass) : std::string("no cubes "), without.mean(), without.std(), without.mean_downs(),
+                 with.mean(), with.std(), with.mean_downs(), with.mean_recoveries());
+    json += fmt::format("{}{{\"mass\": {}, \"without\": {{\"performing_mean\": {}, \"performing_std\": {}, \"downs_mean\": {}}}, "
+                        "\"with\": {{\"performing_mean\": {}, \"performing_std\": {}, \"downs_mean\": {}, \"recovered_mean\": {}}}}}",
+                        i ? ", " : "", json_number(mass), json_number(without.mean()), json_number(without.std()), json_number(without.mean_downs()),
+                        json_number(with.mean()), json_number(with.std()), json_number(with.mean_downs()), json_number(with.mean_recoveries()));
+  }
+  return json + "]}";
+}
+
+}  // namespace mimic::app
