@@ -10,28 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "env/down_rule.hpp"
 #include "mimic/runtime.hpp"
 
 namespace mimic {
-
-// The robustness protocol's rule for a character that is down: lying — a body whose ground
-// contact counts as a fall on the ground, or its root below `height` times its standing height —
-// for `frames` control steps in a row. A crouch on its feet is neither. It is up again after as
-// many steps in a row not lying.
-class DownRule {
- public:
-  DownRule(double standing_height, double height = 0.5, int frames = 10);
-  // One control step's root height and fall contact; true at the step the character becomes down
-  // (once per fall).
-  bool update(double root_height, bool fall_contact = false);
-  bool down() const { return down_; }
-  void restart(double standing_height);
-
- private:
-  double standing_, height_;
-  int frames_, lying_ = 0, up_ = 0;
-  bool down_ = false;
-};
 
 struct PlayEvent {
   double t = 0.0;     // seconds since the session started (resets do not restart it)

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "control/play_session.hpp"
 #include "core/error.hpp"
+#include "env/down_rule.hpp"
 
 namespace mimic {
 

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
+#include "env/down_rule.hpp"
 #include "learn/imitation/frame_history.hpp"
 
 namespace mimic {
@@ -163,7 +164,6 @@ RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act
                                     int lying_frames, std::uint64_t seed) {
   if (trials < 1 || max_frames < 1 || lying_frames < 1) throw Error("robustness: trials, frames and lying frames must be at least 1");
   const Clip* clip = env.reference();
-  const double low_root = 0.5 * env.world().character().rest_root_height();
   RobustnessReport report;
   report.max_frames = max_frames;
   FrameHistory frames(history);
@@ -171,14 +171,13 @@ RobustnessReport measure_robustness(CharacterEnv& env, const PolicyFunction& act
   for (int i = 0; i < trials; ++i) {
     frames.reset(clip ? env.reset(env.state_on_clip(*clip, clip->duration() * i / trials)) : env.reset(rng));
     if (ProjectileLauncher* launcher = env.projectiles()) launcher->reseed(seed * 1000003 + static_cast<std::uint64_t>(i));
-    int lying = 0, survived = max_frames;
+    // Down: a fall body on the ground, or the root below half its standing height (lying on cubes).
+    DownRule rule(env.world().character().rest_root_height(), 0.5, lying_frames);
+    int survived = max_frames;
     for (int t = 1; t <= max_frames; ++t) {
       const StepResult r = env.step(act(frames.stacked()));
       frames.push(r.observation);
-      // Down: a fall body on the ground, or the root below half its standing height (lying on cubes).
-      const bool down = env.fall_contact() || env.world().root_position().z() < low_root;
-      lying = down ? lying + 1 : 0;
-      if (lying >= lying_frames) {
+      if (rule.update(env.world().root_position().z(), env.fall_contact())) {
         survived = t - lying_frames;  // the frames before it went down for good
         break;
       }
