@@ -841,6 +841,14 @@ TEST(ImitationEnv, TerrainAndPushKeysReachTheEnv) {
   EXPECT_NE(unknown_link.find("tail"), std::string::npos) << unknown_link;
   EXPECT_NE(factory_error(yaml, "{name: imitation, pushes: [{link: chest}]}").find("missing 'force'"), std::string::npos);
   EXPECT_NE(factory_error(yaml, "{name: imitation, pushes: [{link: chest, force: [1, 2]}]}").find("force"), std::string::npos);
+  const CharacterEnvConfig walls = made_config(yaml, "{name: imitation, terrain: {kind: walls, wall_count: 2, wall_spacing: 4, wall_height: 1.5, "
+                                                     "wall_thickness: 0.2, opening_width: 3}}");
+  EXPECT_EQ(walls.terrain.kind, TerrainKind::Walls);
+  EXPECT_EQ(walls.terrain.wall_count, 2);
+  EXPECT_EQ(walls.terrain.wall_spacing, 4.0);
+  EXPECT_EQ(walls.terrain.wall_height, 1.5);
+  EXPECT_EQ(walls.terrain.wall_thickness, 0.2);
+  EXPECT_EQ(walls.terrain.opening_width, 3.0);
   EXPECT_NE(factory_error(yaml, "{name: imitation, terrain: {kind: lava}}").find("env.terrain.kind"), std::string::npos);
   EXPECT_NE(factory_error(yaml, "{name: imitation, terrain: {kind: stairs, steps: 3}}").find("steps"), std::string::npos);
 }

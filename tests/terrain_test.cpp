@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "core/error.hpp"
 #include "env/character_env.hpp"
@@ -50,13 +52,14 @@ double ray_height(const World& w, double x, double y) {
 }  // namespace
 
 TEST(Terrain, KindNamesRoundTrip) {
-  for (TerrainKind k : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField})
+  for (TerrainKind k : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField, TerrainKind::Walls})
     EXPECT_EQ(terrain_kind_from_string(to_string(k)), k);
   EXPECT_THROW(terrain_kind_from_string("lava"), Error);
 }
 
 TEST(Terrain, EveryKindMatchesMuJoCoRayCasts) {
-  for (TerrainKind kind : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField}) {
+  for (TerrainKind kind : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField,
+                           TerrainKind::Walls}) {
     TerrainSpec s = spec_of(kind);
     s.slope_segments = kind == TerrainKind::Slope ? 3 : 1;  // random up and down inclines
     const Terrain terrain(s);
@@ -124,6 +127,37 @@ TEST(Terrain, StairsRiseByStepHeightPerStepDepth) {
   EXPECT_NEAR(ray_height(*w, top + s.landing + s.step_count * s.step_depth + 0.5, 0.0), 0.0, 1e-6);
 }
 
+TEST(Terrain, EachWallBlocksTheCourseButForOneOpeningDrawnFromTheSeed) {
+  const TerrainSpec s = spec_of(TerrainKind::Walls);  // 5 walls 1 m high, 0.3 m thick, every 7 m from x = 2, 20 m wide
+  const Terrain walls(s);
+  const auto w = world_on(walls);
+  std::vector<double> openings;
+  for (int k = 0; k < s.wall_count; ++k) {
+    const double x = s.start_zone + k * s.wall_spacing + s.wall_thickness / 2;  // inside wall k
+    // Across the course at 5 cm steps: wall everywhere but one stretch of opening_width at ground height.
+    std::vector<double> open;
+    for (int i = 0; i < static_cast<int>(std::lround(s.width / 0.05)); ++i) {
+      const double y = -s.width / 2 + 0.025 + 0.05 * i;
+      const double h = walls.height(x, y);
+      ASSERT_TRUE(h == 0.0 || h == s.wall_height) << "wall " << k << " at y " << y << ": " << h;
+      EXPECT_NEAR(ray_height(*w, x, y), h, 1e-6) << "wall " << k << " at y " << y;
+      if (h == 0.0) open.push_back(y);
+    }
+    ASSERT_FALSE(open.empty()) << "wall " << k << " has no opening";
+    for (std::size_t i = 1; i < open.size(); ++i) ASSERT_NEAR(open[i] - open[i - 1], 0.05, 1e-9) << "wall " << k << " has two openings";
+    EXPECT_NEAR(open.back() - open.front() + 0.05, s.opening_width, 0.051) << "wall " << k;
+    openings.push_back((open.front() + open.back()) / 2);
+    // Between the walls the ground is flat.
+    EXPECT_EQ(walls.height(x + s.wall_spacing / 2, 0.0), 0.0);
+  }
+  // The openings are placed by the seed: not all in one place, the same again for the seed.
+  EXPECT_GT(*std::max_element(openings.begin(), openings.end()) - *std::min_element(openings.begin(), openings.end()), 1.0);
+  const Terrain again(s);
+  for (int k = 0; k < s.wall_count; ++k)
+    EXPECT_EQ(again.height(s.start_zone + k * s.wall_spacing + 0.1, openings[static_cast<std::size_t>(k)]), 0.0);
+  EXPECT_EQ(walls.height(1.0, 0.0), 0.0);  // the start zone
+}
+
 TEST(Terrain, HeightFieldIsBumpyAndDeterministicForASeed) {
   const TerrainSpec s = spec_of(TerrainKind::HeightField);
   const Terrain a(s), b(s);
@@ -158,6 +192,8 @@ TEST(Terrain, RejectsBadSpecs) {
   EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::Stairs, s.step_height = 0; })), Error);
   EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::HeightField, s.roughness = -1; })), Error);
   EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.width = 0; })), Error);
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::Walls, s.opening_width = 25; })), Error);
+  EXPECT_THROW(Terrain(bad([](TerrainSpec& s) { s.kind = TerrainKind::Walls, s.wall_count = 10; })), Error);
   // A model built without the terrain's height field cannot take its data.
   const Terrain hf(spec_of(TerrainKind::HeightField));
   World plain(builtin());
@@ -168,7 +204,7 @@ TEST(TerrainEnv, CharacterStartsStandingOnEveryKind) {
   // DeepMimic's humanoid stands with zero actions; on every kind it starts on flat ground.
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();
-  for (TerrainKind kind : {TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField}) {
+  for (TerrainKind kind : {TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField, TerrainKind::Walls}) {
     CharacterEnvConfig cfg;
     cfg.terrain = spec_of(kind);
     CharacterEnv env(ch, cfg);

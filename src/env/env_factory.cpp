@@ -77,11 +77,11 @@ ProjectileSpec read_projectiles(ConfigSection& parent, const YamlReader& reader,
   return p;
 }
 
-// The terrain (sim/terrain.hpp): terrain: {kind: flat | slope | gaps | stairs | heightfield, ...}.
+// The terrain (sim/terrain.hpp): terrain: {kind: flat | slope | gaps | stairs | heightfield | walls, ...}.
 TerrainSpec read_terrain(ConfigSection& parent, const YamlReader& reader) {
   TerrainSpec t;
   ConfigSection s(reader, parent.child("terrain"), "env.terrain");
-  t.kind = terrain_kind_from_string(s.choice("kind", "flat", {"flat", "slope", "gaps", "stairs", "heightfield"}));
+  t.kind = terrain_kind_from_string(s.choice("kind", "flat", {"flat", "slope", "gaps", "stairs", "heightfield", "walls"}));
   t.start_zone = s.number("start_zone", t.start_zone, 0, 1e3);
   t.behind = s.number("behind", t.behind, 0, 1e4);
   t.ahead = s.number("ahead", t.ahead, 0, 1e4);
@@ -100,6 +100,11 @@ TerrainSpec read_terrain(ConfigSection& parent, const YamlReader& reader) {
   t.step_count = static_cast<int>(s.integer("step_count", t.step_count, 0, 10'000));
   t.roughness = s.number("roughness", t.roughness, 0, 100);
   t.feature = s.number("feature", t.feature, 1e-3, 1e3);
+  t.wall_count = static_cast<int>(s.integer("wall_count", t.wall_count, 0, 10'000));
+  t.wall_spacing = s.number("wall_spacing", t.wall_spacing, 0, 1e3);
+  t.wall_height = s.number("wall_height", t.wall_height, 0, 100);
+  t.wall_thickness = s.number("wall_thickness", t.wall_thickness, 0, 100);
+  t.opening_width = s.number("opening_width", t.opening_width, 0, 1e3);
   t.seed = s.seed("seed", t.seed);
   s.finish();
   return t;

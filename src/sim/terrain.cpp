@@ -18,14 +18,15 @@ const char* to_string(TerrainKind kind) {
     case TerrainKind::Gaps: return "gaps";
     case TerrainKind::Stairs: return "stairs";
     case TerrainKind::HeightField: return "heightfield";
+    case TerrainKind::Walls: return "walls";
   }
   return "?";
 }
 
 TerrainKind terrain_kind_from_string(const std::string& name) {
-  for (TerrainKind k : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField})
+  for (TerrainKind k : {TerrainKind::Flat, TerrainKind::Slope, TerrainKind::Gaps, TerrainKind::Stairs, TerrainKind::HeightField, TerrainKind::Walls})
     if (name == to_string(k)) return k;
-  throw Error("terrain: unknown kind '" + name + "' (known: flat, slope, gaps, stairs, heightfield)");
+  throw Error("terrain: unknown kind '" + name + "' (known: flat, slope, gaps, stairs, heightfield, walls)");
 }
 
 namespace {
@@ -73,6 +74,7 @@ Terrain::Terrain(const TerrainSpec& spec) : spec_(spec) {
     case TerrainKind::Gaps: build_gaps(); break;
     case TerrainKind::Stairs: build_stairs(); break;
     case TerrainKind::HeightField: build_heightfield(); break;
+    case TerrainKind::Walls: build_walls(); break;
   }
 }
 
@@ -139,6 +141,22 @@ void Terrain::build_stairs() {
   }
 }
 
+void Terrain::build_walls() {
+  const TerrainSpec& s = spec_;
+  require(s.wall_count >= 1 && s.wall_spacing > 0 && s.wall_height > 0 && s.wall_thickness > 0 && s.opening_width > 0,
+          "walls: need positive wall_count, wall_spacing, wall_height, wall_thickness and opening_width");
+  require(s.opening_width < s.width, "walls: the opening must be narrower than the course's width");
+  require(s.wall_spacing > s.wall_thickness, "walls: wall_spacing must exceed wall_thickness");
+  require(s.start_zone + (s.wall_count - 1) * s.wall_spacing + s.wall_thickness <= s.ahead, "walls: the walls run past 'ahead'");
+  const double y0 = -s.width / 2, y1 = s.width / 2, half = s.opening_width / 2;
+  for (int k = 0; k < s.wall_count; ++k) {
+    const double x = s.start_zone + k * s.wall_spacing;
+    const double centre = y0 + half + hash01(s.seed, k, 1) * (s.width - s.opening_width);
+    if (centre - half > y0) boxes_.push_back(Box{x, x + s.wall_thickness, y0, centre - half, s.wall_height});
+    if (centre + half < y1) boxes_.push_back(Box{x, x + s.wall_thickness, centre + half, y1, s.wall_height});
+  }
+}
+
 void Terrain::build_heightfield() {
   const TerrainSpec& s = spec_;
   require(s.roughness > 0 && s.feature > 0 && s.resolution > 0, "heightfield: need positive roughness, feature and resolution");
@@ -186,7 +204,7 @@ double Terrain::height(double x, double y) const {
   if (!grid_.z.empty()) return grid_height(x, y);
   double h = base_;
   for (const Box& b : boxes_)
-    if (x >= b.x0 && x <= b.x1) h = std::max(h, b.top);
+    if (x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1) h = std::max(h, b.top);
   return h;
 }
 

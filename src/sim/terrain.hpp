@@ -13,6 +13,10 @@
 //   gaps         gap_count gaps of gap_width, gap_depth deep, between platforms gap_spacing long
 //   stairs       step_count steps (step_height, step_depth) up, a landing, the same steps down
 //   heightfield  smooth bumps 0..roughness high with a feature size, from the seed
+//   walls        wall_count walls across the course every wall_spacing (the first at start_zone),
+//                wall_height high and wall_thickness thick, each with one opening of
+//                opening_width at a lateral place drawn from the seed (seed 000's walls course:
+//                a high-level controller steers the character through the openings)
 // Slopes and height fields are MuJoCo height fields sampled on a grid with `resolution` spacing
 // and interpolated on MuJoCo's triangles, so height() agrees with collisions and mj_ray exactly
 // (a slope's kinks are sharp where start_zone + behind and slope_length are grid multiples).
@@ -28,9 +32,9 @@ struct mjModel_;
 
 namespace mimic {
 
-enum class TerrainKind { Flat, Slope, Gaps, Stairs, HeightField };
+enum class TerrainKind { Flat, Slope, Gaps, Stairs, HeightField, Walls };
 const char* to_string(TerrainKind kind);
-// "flat", "slope", "gaps", "stairs", "heightfield"; throws Error naming the known kinds.
+// "flat", "slope", "gaps", "stairs", "heightfield", "walls"; throws Error naming the known kinds.
 TerrainKind terrain_kind_from_string(const std::string& name);
 
 struct TerrainSpec {
@@ -46,6 +50,8 @@ struct TerrainSpec {
   double step_height = 0.15, step_depth = 0.3, landing = 2.0;
   int step_count = 8;
   double roughness = 0.15, feature = 1.0;       // height field: max bump height, bump size (m)
+  int wall_count = 5;
+  double wall_spacing = 7.0, wall_height = 1.0, wall_thickness = 0.3, opening_width = 2.0;  // (m)
   std::uint64_t seed = 0;
 };
 
@@ -68,6 +74,7 @@ class Terrain {
   struct Box {
     double x0, x1, y0, y1, top;  // from base_ up to top
   };
+  void build_walls();
   struct Grid {  // height-field samples: row r at y0 + r * dy, column c at x0 + c * dx
     int nrow = 0, ncol = 0;
     double x0 = 0, y0 = 0, dx = 0, dy = 0, lo = 0, hi = 0;
