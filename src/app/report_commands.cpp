@@ -84,6 +84,13 @@ LineChart learning_chart(const PlotArgs& a) {
   return chart;
 }
 
+// One point's band, y ± sd cut to [0, top]; none (NaN) without a spread (older files have none).
+void add_band(ChartSeries& s, double y, double sd, double top) {
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  s.band_low.push_back(std::isfinite(sd) ? std::max(0.0, y - sd) : none);
+  s.band_high.push_back(std::isfinite(sd) ? std::min(top, y + sd) : none);
+}
+
 // Seed 004 Fig. 7: frames survived against projectile mass, one line per evaluation, shaded ± one
 // standard deviation of the trials, cut at 0 and at the trials' length (frames cannot go past them).
 LineChart robustness_chart(const PlotArgs& a) {
@@ -95,12 +102,8 @@ LineChart robustness_chart(const PlotArgs& a) {
     const EvalSummary e = read_eval_json(a.inputs[i]);
     if (e.masses.empty()) throw Error(a.inputs[i].string() + ": no robustness figures (evaluate with mimic eval --robustness)");
     ChartSeries s{name_of(a, i, a.inputs[i]), e.masses, e.frames};
-    for (std::size_t j = 0; j < e.masses.size(); ++j) {
-      const double sd = e.frames_std[j], top = std::isfinite(e.max_frames[j]) ? e.max_frames[j] : e.frames[j] + sd;
-      const double none = std::numeric_limits<double>::quiet_NaN();  // older files have no spread: no band
-      s.band_low.push_back(std::isfinite(sd) ? std::max(0.0, e.frames[j] - sd) : none);
-      s.band_high.push_back(std::isfinite(sd) ? std::min(top, e.frames[j] + sd) : none);
-    }
+    for (std::size_t j = 0; j < e.masses.size(); ++j)
+      add_band(s, e.frames[j], e.frames_std[j], std::isfinite(e.max_frames[j]) ? e.max_frames[j] : e.frames[j] + e.frames_std[j]);
     chart.series.push_back(std::move(s));
   }
   return chart;
@@ -121,8 +124,7 @@ LineChart recovery_chart(const PlotArgs& a) {
       for (const auto& p : e.recovery) {
         const double y = 100.0 * (with ? p.with : p.without), sd = 100.0 * (with ? p.with_std : p.without_std);
         s.x.push_back(p.mass), s.y.push_back(y);
-        s.band_low.push_back(std::isfinite(sd) ? std::max(0.0, y - sd) : std::numeric_limits<double>::quiet_NaN());
-        s.band_high.push_back(std::isfinite(sd) ? std::min(100.0, y + sd) : std::numeric_limits<double>::quiet_NaN());
+        add_band(s, y, sd, 100.0);
       }
       chart.series.push_back(std::move(s));
     }
