@@ -388,6 +388,11 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   run_ok(train ${OUT}/tracking_context.yaml -o ${OUT}/tracking_context_run)
   run_ok(render ${OUT}/tracking_context_run -o ${OUT}/tracking_context.mp4 --seconds 0.5 --ghost --contexts 1,0 --context-seconds 0.2)
   expect_in("${LAST_OUT}" "0.20 s: context 0")
+  # A run filmed in another environment for the video (the walls course), its config untouched.
+  run_ok(render ${OUT}/tracking_run -o ${OUT}/walls.mp4 --seconds 0.3 --width 160 --height 90 --set "env.terrain={kind: walls, wall_spacing: 4}")
+  expect_in("${LAST_OUT}" "wrote ${OUT}/walls.mp4 (9 frames")
+  run_fails("render overrides environment keys only" render ${OUT}/tracking_run -o ${OUT}/x.mp4 --set policy.hidden=[8])
+  run_fails("--set is for a training run's environment, not a clip" render ${OUT}/demo/jumping_jack.mclip -o ${OUT}/x.mp4 --set env.max_seconds=3)
   # The docs' figures: robustness curves and a table of evaluations.
   run_ok(plot ${OUT}/robust.json ${OUT}/robust.json --names a b -o ${OUT}/robust.png)
   if(NOT EXISTS ${OUT}/robust.png)

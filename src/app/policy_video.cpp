@@ -18,7 +18,7 @@
 namespace mimic::app {
 
 PolicyVideoStats render_policy_video(const std::filesystem::path& run, const std::filesystem::path& out, const PolicyVideoOptions& opts) {
-  const std::shared_ptr<const Skill> skill = run_skill(run);
+  const std::shared_ptr<const Skill> skill = run_skill(run, opts.env_settings);
   const std::unique_ptr<Env> env = make_skill_env(*skill);
   try {
     return render_policy_video(*env, [&skill](const Eigen::VectorXd& x) { return skill->act(x); }, skill->history(), out, opts);

@@ -2,6 +2,7 @@
 // Videos of trained policies (mimic render RUN).
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "env/env.hpp"
@@ -19,6 +20,7 @@ struct PolicyVideoOptions {
   // environment draws its own).
   std::vector<int> contexts;
   double context_seconds = 5.0;
+  std::vector<std::string> env_settings;  // env.KEY=VALUE over the run's config (a run or model directory)
   CameraSpec camera{Vec3(0, 0, 0.9), 4.0, 90.0, -12.0};  // lookat z: height of the point followed
 };
 

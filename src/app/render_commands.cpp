@@ -36,6 +36,7 @@ void add_render_commands(CLI::App& app) {
     std::string builtin;
     std::vector<int> contexts;
     double context_seconds = 5.0;
+    std::vector<std::string> settings;
     LoadOptions load;
     ClipVideoOptions video;
   };
@@ -53,10 +54,15 @@ void add_render_commands(CLI::App& app) {
   render->add_option("--context-seconds", args->context_seconds, "how long each of --contexts is held")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  render->add_option("--set", args->settings,
+                     "a run's environment for this video: env.KEY=VALUE over its config (e.g. \"env.terrain={kind: walls}\"); repeatable");
   add_load_options(*render, args->load);
   render->callback([args] {
+    for (const std::string& setting : args->settings)
+      if (setting.rfind("env.", 0) != 0) throw Error("--set " + setting + ": render overrides environment keys only (env.KEY=VALUE)");
     if (std::filesystem::is_directory(args->input)) {
       PolicyVideoOptions o;
+      o.env_settings = args->settings;
       o.width = args->video.width, o.height = args->video.height, o.ghost = args->video.ghost;
       o.contexts = args->contexts, o.context_seconds = args->context_seconds;
       if (args->video.seconds > 0) o.seconds = args->video.seconds;
@@ -66,6 +72,7 @@ void add_render_commands(CLI::App& app) {
       return;
     }
     if (!args->contexts.empty()) throw Error(args->input.string() + ": --contexts is for a training run's policy, not a clip");
+    if (!args->settings.empty()) throw Error(args->input.string() + ": --set is for a training run's environment, not a clip");
     const Clip clip = load_motion(args->input, args->load);
     const CharacterModel ch = character_for(clip, args->input, args->load);
     const int frames = render_clip_video(ch, clip, args->output, args->video);
