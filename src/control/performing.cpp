@@ -2,29 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <string>
 
 #include "control/play_session.hpp"
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 
 namespace mimic {
 
-namespace {
-
-double mean_of(const std::vector<double>& v) { return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
-
-}  // namespace
-
 double PerformingReport::mean() const { return mean_of(fractions); }
 
-double PerformingReport::std() const {
-  if (fractions.empty()) return 0.0;
-  const double m = mean();
-  double sum = 0.0;
-  for (const double f : fractions) sum += (f - m) * (f - m);
-  return std::sqrt(sum / static_cast<double>(fractions.size()));
-}
+double PerformingReport::std() const { return std_of(fractions); }
 
 double PerformingReport::mean_downs() const { return mean_of(std::vector<double>(downs.begin(), downs.end())); }
 

@@ -25,8 +25,9 @@ struct PerformingReport {
   std::vector<double> fractions;  // per trial: the fraction of its control steps performing
   std::vector<int> downs;         // per trial: times the character went down
   std::vector<int> recoveries;    // per trial: times the skill took the character back after a get-up
+  // Over the trials (core/statistics.hpp: the population standard deviation; NaN for none).
   double mean() const;
-  double std() const;             // population standard deviation over the trials
+  double std() const;
   double mean_downs() const;
   double mean_recoveries() const;
 };
