@@ -100,6 +100,15 @@ std::vector<std::string> with_settings(const EvalArgs& args, const std::vector<s
   return all;
 }
 
+}  // namespace
+
+std::vector<std::string> projectile_settings(const EvalArgs& args, double mass) {
+  return with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
+                              fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)});
+}
+
+namespace {
+
 // Seed 004's projectile test at each mass: the run's environment rebuilt with projectiles on.
 std::string robustness(const EvalArgs& args, const RunNetworks& networks) {
   const int max_frames = static_cast<int>(std::lround(args.robustness_seconds * 30.0));
@@ -111,8 +120,7 @@ std::string robustness(const EvalArgs& args, const RunNetworks& networks) {
     const double mass = args.masses[i];
     const std::shared_ptr<const Skill> skill = load_skill(
         args.run, networks.bytes, networks.source, "",
-        with_settings(args, {mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}",
-                             fmt::format("env.max_seconds={}", args.robustness_seconds + 1.0)}));
+        projectile_settings(args, mass));
     const std::unique_ptr<Env> env = make_skill_env(*skill);
     CharacterEnv* character = character_of(*env);
     if (!character) throw Error(args.run.string() + ": robustness needs a character environment");

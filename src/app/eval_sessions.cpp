@@ -66,9 +66,7 @@ std::string recovery(const EvalArgs& args) {
   json += "], \"masses\": [";
   for (std::size_t i = 0; i < args.masses.size(); ++i) {
     const double mass = args.masses[i];
-    std::vector<std::string> settings = args.settings;
-    settings.push_back(mass > 0 ? fmt::format("env.projectiles={{enabled: true, mass: {}}}", mass) : "env.projectiles={enabled: false}");
-    settings.push_back(fmt::format("env.max_seconds={}", o.seconds + 1.0));
+    const std::vector<std::string> settings = projectile_settings(args, mass);
     std::vector<std::shared_ptr<const Skill>> skills{run_skill(args.run, settings, /*discriminators=*/true)};
     const PerformingReport without = measure_performing(skills, o);
     for (const auto& get_up : args.recover) skills.push_back(run_skill(get_up, settings, /*discriminators=*/true));

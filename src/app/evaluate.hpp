@@ -40,5 +40,8 @@ void evaluate(const EvalArgs& args);
 // recovery by args.recover.
 std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>& skill);
 std::string recovery(const EvalArgs& args);
+// The run's environment for seed 004's projectile test at `mass` (0: no cubes): the user's --set,
+// then cubes at the torso every frame and episodes a second longer than --robustness-seconds.
+std::vector<std::string> projectile_settings(const EvalArgs& args, double mass);
 
 }  // namespace mimic::app
