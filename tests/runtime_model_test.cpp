@@ -56,6 +56,19 @@ TEST(ArrayFile, EveryKindRoundTripsAndBadArraysAreRefusedWhenWritten) {
   EXPECT_TRUE(contains(error_of([] { (void)encode_arrays({NamedArray::of_floats("r", {1, 1, 1, 1, 1}, {1})}); }), "rank 5, above 4"));
 }
 
+TEST(ArrayFile, AnArrayWithAZeroInItsShapeRoundTripsEmpty) {
+  // Found by fuzz_runtime_model under UBSan: decoding an empty float array once copied zero bytes
+  // into a null pointer.
+  const std::vector<NamedArray> back =
+      decode_arrays(encode_arrays({NamedArray::of_floats("e", {0, 3}, {}), NamedArray::of_doubles("f", {4, 0}, {}), NamedArray::of_text("t", "")}));
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[0].shape, (std::vector<std::uint32_t>{0, 3}));
+  EXPECT_TRUE(back[0].f32.empty());
+  EXPECT_EQ(back[1].shape, (std::vector<std::uint32_t>{4, 0}));
+  EXPECT_TRUE(back[1].f64.empty());
+  EXPECT_EQ(back[2].text, "");
+}
+
 // A copy of the walker's model whose networks.mimic went through `edit` (re-encoded: its CRC-32
 // is right, so what is refused is the content).
 std::filesystem::path edited_model(const std::string& name, const std::function<void(std::vector<NamedArray>&)>& edit) {

@@ -177,8 +177,12 @@ std::vector<NamedArray> decode_arrays(std::string_view bytes) {
     const std::size_t width = a.kind == NamedArray::Kind::Text ? 1 : a.kind == NamedArray::Kind::Float32 ? sizeof(float) : sizeof(double);
     const std::string_view data = r.take(count * width, "array '" + a.name + "'s values");
     if (a.kind == NamedArray::Kind::Text) a.text = std::string(data);
-    else if (a.kind == NamedArray::Kind::Float32) a.f32.resize(count), std::memcpy(a.f32.data(), data.data(), data.size());
-    else a.f64.resize(count), std::memcpy(a.f64.data(), data.data(), data.size());
+    else if (a.kind == NamedArray::Kind::Float32) a.f32.resize(count);
+    else a.f64.resize(count);
+    // An array with a zero in its shape holds no values; memcpy's pointers must not be null even
+    // for zero bytes, and an empty vector's data() may be.
+    if (count > 0 && a.kind == NamedArray::Kind::Float32) std::memcpy(a.f32.data(), data.data(), data.size());
+    if (count > 0 && a.kind == NamedArray::Kind::Float64) std::memcpy(a.f64.data(), data.data(), data.size());
     out.push_back(std::move(a));
   }
   if (r.left() != 0) throw Error(std::to_string(r.left()) + " bytes after the last of its " + std::to_string(n) + " arrays");
