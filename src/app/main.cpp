@@ -28,6 +28,8 @@ int run(int argc, char** argv) {
   mimic::app::add_eval_command(app);
   mimic::app::add_play_command(app);
   mimic::app::add_report_commands(app);
+  mimic::app::add_video_commands(app);
+  mimic::app::add_reconstruct_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

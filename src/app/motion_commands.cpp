@@ -96,12 +96,12 @@ struct MotionArgs {
   int panels = 8;
 };
 
+}  // namespace
+
 Skeleton load_target_skeleton(const std::filesystem::path& path) {
   if (path.extension() == ".mclip") return load_motion(path).skeleton;
   return load_deepmimic_character(path).skeleton;
 }
-
-}  // namespace
 
 void add_motion_commands(CLI::App& app) {
   auto args = std::make_shared<MotionArgs>();

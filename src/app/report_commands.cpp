@@ -210,13 +210,19 @@ void add_report_commands(CLI::App& app) {
     std::filesystem::path out;
   };
   auto table_args = std::make_shared<TableArgs>();
-  CLI::App* table = app.add_subcommand("table", "a Markdown table of evaluations (mimic eval --json files) with each run's training budget");
-  table->add_option("inputs", table_args->inputs, "evaluation .json files")->required()->check(CLI::ExistingFile);
+  CLI::App* table = app.add_subcommand("table", "a Markdown table of evaluations (mimic eval --json files) with each run's training budget, or of reconstructions (mimic reconstruct --json)");
+  table->add_option("inputs", table_args->inputs, "evaluation (or reconstruction) .json files")->required()->check(CLI::ExistingFile);
   table->add_option("--names", table_args->names, "row names, one per file (default: the runs' directories)");
   table->add_option("-o,--output", table_args->out, "also write the table to this file");
   table->callback([table_args] {
     const TableArgs& a = *table_args;
     if (!a.names.empty() && a.names.size() != a.inputs.size()) throw Error("--names: give one name per file");
+    if (is_reconstruction_report(a.inputs.front())) {  // mimic reconstruct --json files
+      const std::string rec = reconstruction_table(a.inputs, a.names);
+      fmt::print("{}", rec);
+      if (!a.out.empty()) write_file_atomic(a.out, rec);
+      return;
+    }
     std::string text =
         "| run | clip | samples | wall | imitation error (m) | normalised return | falls | down | episode length | progress |\n"
         "|---|---|---|---|---|---|---|---|---|---|\n";
