@@ -5,7 +5,8 @@
 #  1. keypoints: the clip seen through a known camera with a pose estimator's errors
 #     (`mimic video synth`, its documented levels) -> docs/results/video_benchmark.md;
 #  2. video: the clip rendered (`mimic render`) and put through the pose model
-#     (`mimic video keypoints`) -> docs/results/video_benchmark_rendered.md.
+#     (`mimic video keypoints`) -> docs/results/video_benchmark_rendered.md, and a still of the
+#     first clip's video beside its reconstruction -> docs/figures/video_reconstruction.png.
 # Intermediate files in runs/video_benchmark/.
 #
 #   scripts/video_benchmark.sh                 the clips below
@@ -40,6 +41,11 @@ for c in "${clips[@]}"; do
     --raw "$out/$c.video.raw.mclip" --truth "$clip" --json "$out/$c.video.report.json" ${RECONSTRUCT_ARGS:-}
   rendered+=("$out/$c.video.report.json")
 done
+# A still of the first clip's video beside its reconstruction (docs/figures/video_reconstruction.png).
+first=${clips[0]}
+"$mimic" render "$out/$first.video.mclip" --character "$character" -o "$out/$first.video.reconstructed.mp4"
+ffmpeg -v error -y -i "$out/$first.mp4" -i "$out/$first.video.reconstructed.mp4" \
+  -filter_complex "[0:v][1:v]hstack=inputs=2,select=eq(n\\,20)" -frames:v 1 docs/figures/video_reconstruction.png
 mkdir -p docs/results
 "$mimic" table "${reports[@]}" --names "${clips[@]}" -o docs/results/video_benchmark.md
 "$mimic" table "${rendered[@]}" --names "${clips[@]}" -o docs/results/video_benchmark_rendered.md

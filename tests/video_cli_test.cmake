@@ -1,34 +1,11 @@
 # `mimic video synth`, `mimic video keypoints`, `mimic reconstruct` and `mimic table` of
 # reconstructions, run as a user would: the benchmark with a known answer on the built-in jumping
 # jack, the pose model on a video of DeepMimic's walk, and bad input named.
-# cmake -DMIMIC=path/to/mimic -DSRC=source-dir -DOUT=scratch-dir -P video_cli_test.cmake
+# cmake -DMIMIC=path/to/mimic -DSRC=source-dir -DOUT=scratch-dir [-DSANITIZED=ON] -P video_cli_test.cmake
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 
-function(run_ok)
-  execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "mimic ${ARGN} failed (${rc}):\n${out}\n${err}")
-  endif()
-  set(LAST_OUT "${out}${err}" PARENT_SCOPE)
-endfunction()
-
-function(run_fails expect)
-  execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  string(FIND "${out}${err}" "${expect}" at)
-  if(NOT rc EQUAL 1 OR at EQUAL -1)
-    message(FATAL_ERROR "mimic ${ARGN}: expected exit 1 naming '${expect}', got ${rc}:\n${out}${err}")
-  endif()
-endfunction()
-
-function(expect_in text what)
-  string(FIND "${text}" "${what}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "expected '${what}' in:\n${text}")
-  endif()
-endfunction()
-
-# cmake ... -DSANITIZED=ON under the sanitizers.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake)
 
 # The built-in jumping jack, written by the demo's first part.
 run_ok(demo -o ${OUT}/demo --no-video --train-iterations 0)
@@ -86,20 +63,20 @@ if(EXISTS ${OUT}/walk_from_video.mclip AND NOT SANITIZED)
   endforeach()
 endif()
 if(EXISTS ${OUT}/walk_from_video.mclip)
-  run_fails("not a video ffmpeg can read" video keypoints ${jack} -o ${OUT}/x.json)
+  run_fails_named("not a video ffmpeg can read" video keypoints ${jack} -o ${OUT}/x.json)
   # A video without a person.
   execute_process(COMMAND ffmpeg -v error -y -f lavfi -i color=c=gray:s=320x240:d=1:r=10 ${OUT}/gray.mp4 RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "ffmpeg could not make a grey video")
   endif()
-  run_fails("no person found in any of its 10 frames" video keypoints ${OUT}/gray.mp4 -o ${OUT}/x.json)
+  run_fails_named("no person found in any of its 10 frames" video keypoints ${OUT}/gray.mp4 -o ${OUT}/x.json)
 endif()
 
 # Bad input: named, exit 1.
 file(WRITE ${OUT}/flat.json "[{\"image_id\": 1, \"keypoints\": [1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1]}]")
-run_fails("the image size is unknown" reconstruct ${OUT}/flat.json --character ${jack} -o ${OUT}/x.mclip)
-run_fails("no frame has 3D keypoints" reconstruct ${OUT}/flat.json --character ${jack} -o ${OUT}/x.mclip --image-size 640x480)
-run_fails("--image-size 640by480: expected WIDTHxHEIGHT" reconstruct ${OUT}/flat.json --character ${jack} -o ${OUT}/x.mclip --image-size 640by480)
+run_fails_named("the image size is unknown" reconstruct ${OUT}/flat.json --character ${jack} -o ${OUT}/x.mclip)
+run_fails_named("no frame has 3D keypoints" reconstruct ${OUT}/flat.json --character ${jack} -o ${OUT}/x.mclip --image-size 640x480)
+run_fails_named("--image-size 640by480: expected WIDTHxHEIGHT" reconstruct ${OUT}/flat.json --character ${jack} -o ${OUT}/x.mclip --image-size 640by480)
 file(WRITE ${OUT}/notkp.json "{\"hello\": 1}")
-run_fails("not a keypoint file mimic reads" reconstruct ${OUT}/notkp.json --character ${jack} -o ${OUT}/x.mclip)
-run_fails("jack.json:1: the evaluation: missing \"run\"" table ${OUT}/jack.json)
+run_fails_named("not a keypoint file mimic reads" reconstruct ${OUT}/notkp.json --character ${jack} -o ${OUT}/x.mclip)
+run_fails_named("jack.json:1: the evaluation: missing \"run\"" table ${OUT}/jack.json)

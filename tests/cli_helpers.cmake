@@ -1,0 +1,52 @@
+# The functions the command-line tests (cli_test.cmake, video_cli_test.cmake) run `mimic` with.
+# They expect MIMIC, the program; run_ok sets LAST_OUT to what it printed.
+
+# MIMIC_CLI_TIMES=1 in the environment prints each command's wall time (where CI's time goes).
+function(run_ok)
+  string(TIMESTAMP t0 "%s")
+  execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "mimic ${ARGN} failed (${rc}):\n${out}\n${err}")
+  endif()
+  if(DEFINED ENV{MIMIC_CLI_TIMES})
+    string(TIMESTAMP t1 "%s")
+    math(EXPR took "${t1} - ${t0}")
+    message(STATUS "${took} s: mimic ${ARGN}")
+  endif()
+  set(LAST_OUT "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+function(run_fails expect)
+  execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "mimic ${ARGN} succeeded but should have failed")
+  endif()
+  string(FIND "${out}${err}" "${expect}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "mimic ${ARGN}: expected '${expect}' in:\n${out}${err}")
+  endif()
+endfunction()
+
+function(expect_line_count path count)
+  file(STRINGS ${path} rows)
+  list(LENGTH rows n)
+  if(NOT n EQUAL count)
+    message(FATAL_ERROR "${path} should hold ${count} lines, has ${n}:\n${rows}")
+  endif()
+endfunction()
+
+function(expect_in text what)
+  string(FIND "${text}" "${what}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "expected '${what}' in:\n${text}")
+  endif()
+endfunction()
+
+# A failure that mimic names (exit 1), never an "unexpected failure" (exit 2).
+function(run_fails_named expect)
+  execute_process(COMMAND ${MIMIC} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}${err}" "${expect}" at)
+  if(NOT rc EQUAL 1 OR at EQUAL -1)
+    message(FATAL_ERROR "mimic ${ARGN}: expected exit 1 naming '${expect}', got ${rc}:\n${out}${err}")
+  endif()
+endfunction()
