@@ -33,5 +33,6 @@ std::vector<std::string> MimicFuzzSeeds() {
       " \"names\": [\"a\", \"b\"],\n \"frames\": [{\"pixel\": [[1, 2], [3, 4]], \"confidence\": [1, 0.5], \"world\": [[0, 0, 0], [0.1, 0.2, 0.3]]},\n"
       "  {}, {\"pixel\": [[5, 6], [7, 8]], \"confidence\": [0, 1]}]}\n",
       "{\"format\": \"mimic-keypoints\", \"version\": 1, \"fps\": 25, \"width\": 1, \"height\": 1, \"names\": [\"x\"], \"frames\": []}",
+      "{\"format\": \"mimic-keypoints\", \"version\": 1, \"fps\": 25, \"width\": 1, \"height\": 1, \"names\": [\"a\\nb\\t\\\"c\\\\\"], \"frames\": []}",
   };
 }

@@ -61,6 +61,9 @@ TEST(VideoKeypoints, MimicsFileRoundTripsAndBadFilesAreNamed) {
   EXPECT_NEAR(back.frames[5].pixel[3].x(), s.track.frames[5].pixel[3].x(), 1e-3);
   EXPECT_NEAR(back.frames[5].world[3].y(), s.track.frames[5].world[3].y(), 1e-6);
   for (std::size_t k = 0; k < back.names.size(); ++k) EXPECT_NEAR(back.frames[7].confidence[k], s.track.frames[7].confidence[k], 1e-6);
+  KeypointTrack odd = s.track;  // a name with a line break, a tab, a quote and a backslash
+  odd.names[0] = "a\nb\t\"c\\";
+  EXPECT_EQ(parse_keypoints(write_keypoints(odd), "k.json").names[0], odd.names[0]);
   const std::string head = "{\"format\": \"mimic-keypoints\", \"version\": 1, \"fps\": 30, \"width\": 640, \"height\": 480, \"names\": [\"a\", \"b\"], ";
   EXPECT_TRUE(contains(error_of([&] { (void)parse_keypoints(head + "\"frames\": [{\"pixel\": [[1, 2]], \"confidence\": [1]}]}", "k.json"); }),
                        "k.json: frame 0 has 1 keypoints and 1 confidences where the file names 2"));

@@ -34,9 +34,16 @@ std::string number(double v) {
   return buf;
 }
 
+// A JSON string: quotes and backslashes escaped, control characters as \uXXXX.
 std::string quoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buf;
+      continue;
+    }
     if (c == '"' || c == '\\') out += '\\';
     out += c;
   }
