@@ -33,8 +33,9 @@ enum class Smoothness { Velocity, Acceleration };
 
 // The defaults: seed 003's w2D and w3D; the smoothness term on accelerations, wsm 1000. On the
 // benchmark with a known answer (docs/video.md), seed 003's velocity term at its wsm 25 barely
-// moved the raw estimate (MPJPE 4.9 -> 4.9 cm, jitter 380 -> 90 m/s²), and at larger weights it
-// slowed the motion down (the run: 22-31 cm); accelerations cost nothing for steady motion.
+// moves the raw estimate (walk: MPJPE 4.88 -> 4.86 cm, jitter 382 -> 88 m/s²), and at weights
+// that remove the jitter it slows the motion down (the run: 6.0 -> 10.4 cm at wsm 1000, w3D 10);
+// accelerations cost nothing for steady motion.
 struct ReconstructionOptions {
   double w2d = 10.0, w3d = 100.0, wsm = 1000.0;
   Smoothness smoothness = Smoothness::Acceleration;
