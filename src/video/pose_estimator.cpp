@@ -102,7 +102,8 @@ KeypointTrack estimate_keypoints(const fs::path& video, const PoseEstimatorOptio
     const YamlReader r(where, '"');
     const YAML::Node f = r.parse(text, where + ": not JSON");
     KeypointFrame frame;
-    if (f["found"] && f["found"].as<bool>() && f["keypoints"] && f["world"]) {
+    const YAML::Node seen = f["found"];
+    if (seen && seen.IsScalar() && seen.Scalar() == "true" && f["keypoints"] && f["world"]) {
       const YAML::Node kp = f["keypoints"], w = f["world"];
       if (!kp.IsSequence() || kp.size() != n || !w.IsSequence() || w.size() != n) r.fail(f, "expected 33 keypoints and 33 world points");
       for (std::size_t k = 0; k < n; ++k) {
