@@ -376,7 +376,6 @@ Reconstruction reconstruct_motion(const KeypointTrack& track, const Skeleton& sk
     if (!summary.IsSolutionUsable()) throw Error(where + ": the reconstruction did not converge: " + summary.message);
     rep.iterations += static_cast<int>(summary.iterations.size());
   }
-  rep.solver_summary = summary.BriefReport();
   rep.reconstructed = terms(q);
 
   // The ground, and the world's axes in the camera's.

@@ -66,7 +66,6 @@ struct ReconstructionReport {
   double raw_seconds = 0;             // the raw estimate's part of `seconds`
   int iterations = 0;
   double seconds = 0;
-  std::string solver_summary;         // Ceres's one-line report
 };
 
 struct Reconstruction {

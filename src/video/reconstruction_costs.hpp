@@ -24,7 +24,7 @@ struct Binding {
 // kinematics, so that an evaluation does not allocate.
 template <typename T>
 struct Scratch {
-  std::vector<Vec3T<T>> a, b, c;
+  std::vector<Vec3T<T>> pos;
   std::vector<QuatT<T>> local, world;
 };
 template <typename T>
@@ -50,7 +50,7 @@ struct KeypointCost {
   template <typename T>
   bool operator()(T const* const* p, T* r) const {
     Scratch<T>& sc = scratch<T>();
-    std::vector<Vec3T<T>>& pos = sc.a;
+    std::vector<Vec3T<T>>& pos = sc.pos;
     pose_positions(*g->sk, g->offsets, p[0], pos, sc.local, sc.world);
     const T inv_depth = T(focal) / pos[0].z();
     for (std::size_t k = 0; k < bindings.size(); ++k) {
@@ -175,7 +175,7 @@ struct WorldKeypointCost {
   template <typename T>
   bool operator()(T const* const* p, T* r) const {
     Scratch<T>& sc = scratch<T>();
-    std::vector<Vec3T<T>>& pos = sc.a;
+    std::vector<Vec3T<T>>& pos = sc.pos;
     pose_positions(*g->sk, g->offsets, p[0], pos, sc.local, sc.world);
     Vec3T<T> mean = Vec3T<T>::Zero();
     for (const Binding& bd : bindings) mean += pos[static_cast<std::size_t>(bd.point)];
