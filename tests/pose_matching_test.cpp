@@ -53,6 +53,25 @@ TEST(PoseMatcher, NearestFrameInTheHeadingFrameOverTheClipsSpreadPinnedByHand) {
   EXPECT_THROW(PoseMatcher({}), Error);
 }
 
+TEST(PoseMatcher, NearestNamesTheClipAndFrameAndRefusesAnotherSkeleton) {
+  // Clip 0: pitched 0 and 60 degrees; clip 1: pitched 20 and 40. Pitched 35 is nearest to clip 1's
+  // frame 1 (arm 2 sin 2.5 deg away, against 2 sin 7.5 and more), pitched 55 to clip 0's frame 1.
+  Clip a = two_joint_clip(), b = two_joint_clip();
+  a.frames = {pitched(0), pitched(60)};
+  b.frames = {pitched(20), pitched(40)};
+  const PoseMatcher m({&a, &b});
+  const FrameMatch near35 = m.nearest(pitched(35, Vec3(1, 1, 1), 30));
+  EXPECT_EQ(near35.clip, 1);
+  EXPECT_EQ(near35.frame, 1);
+  EXPECT_NEAR(near35.distance, std::sin(2.5 * std::numbers::pi / 180), 1e-12);  // (0 + 2 sin 2.5 deg) / 2 joints
+  const FrameMatch near55 = m.nearest(pitched(55));
+  EXPECT_EQ(near55.clip, 0);
+  EXPECT_EQ(near55.frame, 1);
+  Pose three = pitched(0);
+  three.rot.push_back(Quat::Identity());
+  EXPECT_NE(test::error_of([&] { (void)m.nearest(three); }).find("a pose of 3 joints against clips of 2"), std::string::npos);
+}
+
 TEST(PoseMatcher, TheWalksOwnStartMatchesItsClipAndTheRuleSwitchesOnlyAtAReadinessReached) {
   std::filesystem::path data;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", data);

@@ -1,5 +1,5 @@
-# `mimic video synth`, `mimic video keypoints`, `mimic reconstruct` and `mimic table` of
-# reconstructions, run as a user would on DeepMimic's walk: the benchmark with a known answer, the
+# `mimic video synth`, `mimic video keypoints`, `mimic reconstruct`, `mimic table` of
+# reconstructions and `mimic complete`, run as a user would on DeepMimic's walk: the benchmark with a known answer, the
 # pose model on a rendered video of it, the reconstruction to a skill, and bad input named.
 # cmake -DMIMIC=path/to/mimic -DSRC=source-dir -DOUT=scratch-dir [-DSANITIZED=ON] -P video_cli_test.cmake
 file(REMOVE_RECURSE ${OUT})
@@ -40,6 +40,18 @@ run_ok(table ${OUT}/walk_rec.json --names walk -o ${OUT}/table.md)
 expect_in("${LAST_OUT}" "| walk | 38 |")
 run_fails_named("walk_synth.json:1: the evaluation: missing \"run\"" table ${OUT}/walk_synth.json)
 
+# Motion completion from one frame of those keypoints: the walk, near the frame, carried on.
+set(skills ${SRC}/models/humanoid_walk_iccgan ${SRC}/models/humanoid_run_iccgan_straight_loop)
+run_ok(complete ${OUT}/walk_synth.json --frame 12 --skills ${skills} --seconds 1 --json ${OUT}/complete.json)
+expect_in("${LAST_OUT}" "completing with humanoid_walk_iccgan, from the frame")
+expect_in("${LAST_OUT}" "simulated 1.0 s: the character stayed up")
+file(READ ${OUT}/complete.json completion)
+foreach(key "\"skill\": \"humanoid_walk_iccgan\"" "\"clip\": \"humanoid3d_walk\"" "\"fell\": false")
+  expect_in("${completion}" "${key}")
+endforeach()
+run_fails_named("walk_synth.json: no frame 99 (it has 38, from 0)" complete ${OUT}/walk_synth.json --frame 99 --skills ${skills})
+run_fails_named("skill 'walker_ppo' (" complete ${OUT}/walk_synth.json --skills ${SRC}/models/walker_ppo)
+
 # A real pose model on a rendered video of the walk, the reconstruction from its keypoints and a
 # skill from that (the end-to-end path; skipped where scripts/setup.sh has not installed the pose
 # estimator).
@@ -65,6 +77,18 @@ else()
       endif()
     endforeach()
   endif()
+  # Motion completion from a still of the video: the walk, filmed.
+  execute_process(COMMAND ffmpeg -v error -y -i ${OUT}/walk.mp4 -vf "select=eq(n\\,10)" -frames:v 1 ${OUT}/walk10.png RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "ffmpeg could not take a frame of the rendered walk")
+  endif()
+  run_ok(complete ${OUT}/walk10.png --skills ${skills} --seconds 1 -o ${OUT}/completion.mp4)
+  expect_in("${LAST_OUT}" "completing with humanoid_walk_iccgan")
+  if(NOT EXISTS ${OUT}/completion.mp4)
+    message(FATAL_ERROR "complete -o wrote no video")
+  endif()
+  run_fails_named("--frame picks a frame of a keypoint file; an image has one" complete ${OUT}/walk10.png --frame 2 --skills ${skills})
+  run_fails_named("not a video ffmpeg can read" complete ${OUT}/walk_rec.mclip --skills ${skills})
   run_fails_named("not a video ffmpeg can read" video keypoints ${OUT}/walk_rec.mclip -o ${OUT}/x.json)
   # A video without a person.
   execute_process(COMMAND ffmpeg -v error -y -f lavfi -i color=c=gray:s=320x240:d=1:r=10 ${OUT}/gray.mp4 RESULT_VARIABLE rc)

@@ -114,6 +114,15 @@ class Controller {
 
   // A new episode of the active skill, from its environment's start distribution.
   void reset();
+  // A new episode of `skill` (made active) from a state of the character given in MuJoCo's terms:
+  // `qpos` and `qvel` (physics_model()'s nq and nv numbers), and `past`, the qpos of the control
+  // steps before it, oldest first, that fill the history the skill observes (empty: the state
+  // repeated). `clip_time`: where on the skill's reference clip the state is, for a skill that
+  // tracks one. A game hands its own animation's character to a skill this way; `mimic complete`
+  // starts a skill from a pose seen in a still (seed 003 §8). Throws mimic::Error naming the skill
+  // for a skill that drives no character, vectors of other sizes or numbers that are not finite.
+  void start(const std::string& skill, const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel,
+             const std::vector<Eigen::VectorXd>& past = {}, double clip_time = 0.0);
   // One control step: the active skill's policy mean, applied through its PD targets.
   StepInfo step();
   // Hands the character, in its current state (pose, velocities and its last poses), to another

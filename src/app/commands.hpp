@@ -20,6 +20,7 @@ void add_play_command(CLI::App& app);
 void add_report_commands(CLI::App& app);
 void add_video_commands(CLI::App& app);
 void add_reconstruct_command(CLI::App& app);
+void add_complete_command(CLI::App& app);
 void add_bench_policy_command(CLI::App& bench);  // under `mimic bench`
 
 // Options every command that reads a motion file accepts.

@@ -30,6 +30,7 @@ int run(int argc, char** argv) {
   mimic::app::add_report_commands(app);
   mimic::app::add_video_commands(app);
   mimic::app::add_reconstruct_command(app);
+  mimic::app::add_complete_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -183,6 +183,58 @@ void Controller::reset() {
   c.delay_left = 0;
 }
 
+void Controller::start(const std::string& name, const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel, const std::vector<Eigen::VectorXd>& past,
+                       double clip_time) {
+  Impl& c = *impl_;
+  const std::size_t target = c.index_of(name);
+  Env& env = *c.envs[target];
+  CharacterEnv* character = character_of(env);
+  if (!character) throw Error("start: skill '" + name + "' drives no character");
+  const mjModel* m = env.physics_model();
+  mjData* d = env.physics_data();
+  auto check = [&](const Eigen::VectorXd& v, int size, const std::string& what) {
+    if (v.size() != size) throw Error("start: skill '" + name + "': " + what + " has " + std::to_string(v.size()) + " numbers; its character's has " + std::to_string(size));
+    if (!v.allFinite()) throw Error("start: skill '" + name + "': " + what + " has a number that is not finite");
+  };
+  auto check_rotations = [&](const Eigen::VectorXd& q, const std::string& what) {
+    for (int j = 0; j < m->njnt; ++j) {
+      const int type = m->jnt_type[j];
+      if (type != mjJNT_FREE && type != mjJNT_BALL) continue;
+      const int a = m->jnt_qposadr[j] + (type == mjJNT_FREE ? 3 : 0);
+      if (q.segment(a, 4).norm() < 1e-9) throw Error("start: skill '" + name + "': " + what + " holds a zero quaternion (at " + std::to_string(a) + ")");
+    }
+  };
+  check(qpos, m->nq, "qpos");
+  check_rotations(qpos, "qpos");
+  check(qvel, m->nv, "qvel");
+  for (std::size_t k = 0; k < past.size(); ++k) {
+    check(past[k], m->nq, "past qpos " + std::to_string(k));
+    check_rotations(past[k], "past qpos " + std::to_string(k));
+  }
+  if (!std::isfinite(clip_time)) throw Error("start: skill '" + name + "': the clip time is not finite");
+  // The state read as the character's pose and velocities through its world.
+  auto read = [&](const Eigen::VectorXd& q, const Eigen::VectorXd* v) {
+    std::copy(q.data(), q.data() + m->nq, d->qpos);
+    if (v) std::copy(v->data(), v->data() + m->nv, d->qvel);
+    else std::fill(d->qvel, d->qvel + m->nv, 0.0);
+    return std::make_pair(character->world().pose(), character->world().velocity());
+  };
+  InitState state;
+  for (const Eigen::VectorXd& q : past) state.past.push_back(read(q, nullptr).first);
+  std::tie(state.pose, state.velocity) = read(qpos, &qvel);
+  state.time = clip_time;
+  c.push_left = 0.0;
+  if (c.pushing)
+    if (CharacterEnv* ch = character_of(c.env())) ch->set_pushes(ch->config().pushes);
+  c.pushing = false;
+  c.active = target;
+  c.begin(character->reset(state));
+  c.states.clear();
+  c.remember();
+  c.pending = c.skills.size();
+  c.delay_left = 0;
+}
+
 StepInfo Controller::step() {
   Impl& c = *impl_;
   c.stack();
@@ -227,20 +279,11 @@ StepInfo Controller::step() {
 const PoseMatcher& Controller::Impl::matcher(std::size_t target) {
   matchers.resize(skills.size());
   if (matchers[target]) return *matchers[target];
-  const std::unique_ptr<Env> probe = skills[target]->impl().factory();
-  CharacterEnv* c = character_of(*probe);
-  if (!c) throw Error("skill '" + skills[target]->name() + "': pose matching needs a character environment");
-  std::vector<std::shared_ptr<const Clip>> held;
+  if (!character_of(*envs[target])) throw Error("skill '" + skills[target]->name() + "': pose matching needs a character environment");
+  const std::vector<std::shared_ptr<const Clip>> held = skill_clips(*skills[target]);
+  if (held.empty()) throw Error("skill '" + skills[target]->name() + "': pose matching needs the clips its starts come from (init: mocap), or a reference");
   std::vector<const Clip*> clips;
-  std::mt19937_64 local(1);
-  for (int g = 0; g < std::max(1, c->start_groups()); ++g) {
-    if (c->start_groups() > 1) c->choose_start_group(g);
-    (void)c->reset(local);
-    const Clip* clip = c->start_source().clip ? c->start_source().clip.get() : c->reference();
-    if (c->start_source().clip) held.push_back(c->start_source().clip);
-    if (clip && std::find(clips.begin(), clips.end(), clip) == clips.end()) clips.push_back(clip);
-  }
-  if (clips.empty()) throw Error("skill '" + skills[target]->name() + "': pose matching needs the clips its starts come from (init: mocap), or a reference");
+  for (const auto& c : held) clips.push_back(c.get());
   matchers[target] = std::make_unique<PoseMatcher>(clips);
   return *matchers[target];
 }

@@ -10,12 +10,13 @@ namespace mimic {
 
 namespace {
 
-std::vector<Vec3> local_joints(const Skeleton& sk, const Pose& pose) {
+std::vector<Vec3> local_joints(const Skeleton& sk, const Pose& pose, MatchHeights heights) {
   const LinkFrames f = forward_kinematics(sk, pose);
   const HeadingFrame h = HeadingFrame::of(pose);
+  const Vec3 drop(0, 0, heights == MatchHeights::RootRelative ? pose.root_pos.z() : 0.0);
   std::vector<Vec3> out;
   out.reserve(f.joint_pos.size());
-  for (const Vec3& p : f.joint_pos) out.push_back(h.to_local(p));
+  for (const Vec3& p : f.joint_pos) out.push_back(h.to_local(p) - drop);
   return out;
 }
 
@@ -27,10 +28,13 @@ double mean_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 
 }  // namespace
 
-PoseMatcher::PoseMatcher(const std::vector<const Clip*>& clips) {
+PoseMatcher::PoseMatcher(const std::vector<const Clip*>& clips, MatchHeights heights) : heights_(heights) {
   if (!clips.empty()) skeleton_ = clips.front()->skeleton;
-  for (const Clip* c : clips)
-    for (const Pose& p : c->frames) frames_.push_back(local_joints(c->skeleton, p));
+  for (std::size_t i = 0; i < clips.size(); ++i)
+    for (std::size_t f = 0; f < clips[i]->frames.size(); ++f) {
+      frames_.push_back(local_joints(clips[i]->skeleton, clips[i]->frames[f], heights_));
+      where_.push_back({static_cast<int>(i), static_cast<int>(f), 0.0});
+    }
   if (frames_.empty()) throw Error("pose matching: the clips have no frame");
   std::vector<Vec3> mean(frames_.front().size(), Vec3::Zero());
   for (const auto& f : frames_)
@@ -40,10 +44,14 @@ PoseMatcher::PoseMatcher(const std::vector<const Clip*>& clips) {
   spread_ = std::max(1e-6, sum / static_cast<double>(frames_.size()));
 }
 
-double PoseMatcher::cost(const Pose& pose) const {
-  const std::vector<Vec3> now = local_joints(skeleton_, pose);
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& f : frames_) best = std::min(best, mean_distance(now, f));
+FrameMatch PoseMatcher::nearest(const Pose& pose) const {
+  if (pose.rot.size() != skeleton_.joints.size())
+    throw Error("pose matching: a pose of " + std::to_string(pose.rot.size()) + " joints against clips of " +
+                std::to_string(skeleton_.joints.size()) + " (another skeleton)");
+  const std::vector<Vec3> now = local_joints(skeleton_, pose, heights_);
+  FrameMatch best{0, 0, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < frames_.size(); ++i)
+    if (const double d = mean_distance(now, frames_[i]); d < best.distance) best = {where_[i].clip, where_[i].frame, d};
   return best;
 }
 

@@ -6,6 +6,8 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
+#include "env/character_env.hpp"
+#include "env/context_env.hpp"
 #include "sim/mujoco_load.hpp"
 
 namespace mimic {
@@ -165,6 +167,22 @@ std::shared_ptr<const Skill> skill_in(EnvFactory factory, std::string_view netwo
             (s->bodies.empty() ? "" : " (" + s->bodies.front() + " ...)") + "; " + environment + "'s has " + std::to_string(bodies.size()) +
             (bodies.empty() ? "" : " (" + bodies.front() + " ...)"));
   return std::make_shared<const Skill>(std::move(s));
+}
+
+std::vector<std::shared_ptr<const Clip>> skill_clips(const Skill& s) {
+  const std::unique_ptr<Env> probe = make_skill_env(s);
+  CharacterEnv* c = character_of(*probe);
+  std::vector<std::shared_ptr<const Clip>> clips;
+  if (!c) return clips;
+  std::mt19937_64 local(1);
+  for (int g = 0; g < std::max(1, c->start_groups()); ++g) {
+    if (c->start_groups() > 1) c->choose_start_group(g);
+    (void)c->reset(local);
+    std::shared_ptr<const Clip> clip = c->start_source().clip;
+    if (!clip) clip = c->shared_reference();
+    if (clip && std::none_of(clips.begin(), clips.end(), [&](const auto& k) { return k.get() == clip.get(); })) clips.push_back(clip);
+  }
+  return clips;
 }
 
 const std::string& Skill::name() const { return impl_->name; }

@@ -6,6 +6,7 @@
 #include "control/network.hpp"
 #include "env/env_factory.hpp"
 #include "learn/networks/runtime_format.hpp"
+#include "motion/clip.hpp"
 #include "mimic/runtime.hpp"
 
 namespace mimic {
@@ -45,6 +46,10 @@ std::shared_ptr<const Skill> skill_in(EnvFactory factory, std::string_view netwo
                                       const std::string& environment = "the environment", const std::string& hint = "");
 // A new environment of the skill's (its config's env, settings applied).
 inline std::unique_ptr<Env> make_skill_env(const Skill& s) { return s.impl().factory(); }
+// The clips the skill's episodes start from (each start group's, in their order), or else its
+// environment's reference clip; empty for a skill whose starts come from no clip (or that drives
+// no character).
+std::vector<std::shared_ptr<const Clip>> skill_clips(const Skill& s);
 
 // The skill held by the arrays of `networks` (a networks.mimic file's path, named in errors),
 // without an environment: what the runtime checks in the file alone (the model-reader fuzz

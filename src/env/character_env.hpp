@@ -166,6 +166,7 @@ class CharacterEnv : public Env {
   const World& world() const { return world_; }
   World& world() { return world_; }
   const Clip* reference() const { return reference_.get(); }
+  const std::shared_ptr<const Clip>& shared_reference() const { return reference_; }
   double time() const { return time_; }  // on the reference clip: init time + elapsed
   double elapsed() const { return elapsed_; }
   const CharacterEnvConfig& config() const { return cfg_; }

@@ -76,6 +76,139 @@ std::vector<int> rotating_joints(const Skeleton& sk, const std::vector<int>& off
   return out;
 }
 
+// Keypoints onto the character's joints and sites (by name, or by `map`); names that bind to
+// nothing go to `unused`. Throws Error with fewer than 4 bindings.
+std::vector<Binding> bind_keypoints(const KeypointTrack& track, const Skeleton& sk, const KeypointMap& map, const std::string& where,
+                                    std::vector<std::string>& unused) {
+  std::vector<Binding> bindings;
+  auto point_of = [&](const std::string& name) {
+    if (const int j = sk.find(name); j >= 0) return j;
+    if (const int s = sk.find_site(name); s >= 0) return sk.num_joints() + s;
+    return -1;
+  };
+  if (map.pairs.empty()) {
+    for (std::size_t k = 0; k < track.names.size(); ++k) {
+      const int p = point_of(track.names[k]);
+      if (p >= 0) bindings.push_back({static_cast<int>(k), p});
+      else unused.push_back(track.names[k]);
+    }
+  } else {
+    for (const auto& [kp, joint] : map.pairs) {
+      const int k = track.find(kp);
+      if (k < 0) throw Error(map.source + ": keypoint '" + kp + "' is not among " + where + "'s keypoints");
+      const int p = point_of(joint);
+      if (p < 0) throw Error(map.source + ": '" + joint + "' (for keypoint '" + kp + "') is neither a joint nor a site of the character");
+      bindings.push_back({k, p});
+    }
+    for (const std::string& n : track.names)
+      if (std::none_of(map.pairs.begin(), map.pairs.end(), [&](const auto& pr) { return pr.first == n; })) unused.push_back(n);
+  }
+  if (bindings.size() < 4)
+    throw Error(where + ": only " + std::to_string(bindings.size()) +
+                " of its keypoints name joints or sites of the character (4 at least); give a keypoint map (--map)");
+  return bindings;
+}
+
+// Frame `t`'s keypoints on the bindings; fit when it has `min_keypoints` seen and a 3D estimate.
+FrameData frame_data(const KeypointTrack& track, int t, const std::vector<Binding>& bindings, int min_keypoints) {
+  const KeypointFrame& f = track.frames[static_cast<std::size_t>(t)];
+  FrameData d;
+  if (f.empty()) return d;
+  const double half = 0.5 * track.height;
+  for (const Binding& b : bindings) {
+    const auto k = static_cast<std::size_t>(b.keypoint);
+    if (f.confidence[k] > 0) {
+      d.seen.push_back(b);
+      d.target.emplace_back((f.pixel[k].x() - 0.5 * track.width) / half, (f.pixel[k].y() - half) / half);
+      d.confidence.push_back(f.confidence[k]);
+    }
+    if (!f.world.empty()) d.world.push_back(f.world[k]);
+  }
+  d.fit = static_cast<int>(d.seen.size()) >= min_keypoints && !f.world.empty();
+  return d;
+}
+
+// One frame's raw estimate from `p` (the frame before's, or the rest pose ahead of the camera):
+// the joint rotations fitted to the centred 3D keypoints, then the pelvis's place in closed form
+// from the 2D ones (weak perspective: x̂ = f/Z (X_r + a)). Adds the solver's iterations.
+void fit_frame(const Geometry& g, const std::vector<Binding>& bindings, const FrameData& d, double focal, std::vector<double>& p, int& iterations) {
+  std::vector<Vec3> target = d.world;
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& w : target) centre += w / static_cast<double>(target.size());
+  for (Vec3& w : target) w -= centre;
+  {  // the root's rotation first, from the starting pose turned onto the keypoints
+    const std::vector<Vec3> pos = positions(g, p);
+    std::vector<Vec3> from;
+    Vec3 c = Vec3::Zero();
+    for (const Binding& b : bindings) from.push_back(pos[static_cast<std::size_t>(b.point)]), c += from.back() / static_cast<double>(bindings.size());
+    for (Vec3& v : from) v -= c;
+    const Quat turn = best_rotation(from, target);
+    const Vec3 rv = quat_to_rotvec((turn * rotvec_to_quat(Vec3(p[3], p[4], p[5]))).normalized());
+    p[3] = rv.x(), p[4] = rv.y(), p[5] = rv.z();
+  }
+  ceres::Problem problem;
+  auto* f = new WorldKeypointCost{&g, bindings, target};
+  problem.AddResidualBlock(make_cost(f, g.dofs, 1, 3 * static_cast<int>(bindings.size())), nullptr, p.data());
+  problem.SetManifold(p.data(), new ceres::SubsetManifold(g.dofs, {0, 1, 2}));
+  bound_joints(problem, p.data(), *g.sk, g.offsets);
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = 50;
+  so.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  iterations += static_cast<int>(summary.iterations.size());
+  // The pelvis: scale and shift of the posed points (relative to the root) onto the 2D ones.
+  const std::vector<Vec3> pos = positions(g, p);
+  Vec2 ma = Vec2::Zero(), mb = Vec2::Zero();
+  double wsum = 0;
+  for (std::size_t k = 0; k < d.seen.size(); ++k) {
+    const Vec3 a = pos[static_cast<std::size_t>(d.seen[k].point)] - pos[0];
+    ma += d.confidence[k] * a.head<2>(), mb += d.confidence[k] * d.target[k], wsum += d.confidence[k];
+  }
+  ma /= wsum, mb /= wsum;
+  double num = 0, den = 0;
+  for (std::size_t k = 0; k < d.seen.size(); ++k) {
+    const Vec2 a = (pos[static_cast<std::size_t>(d.seen[k].point)] - pos[0]).head<2>() - ma;
+    num += d.confidence[k] * a.dot(d.target[k] - mb), den += d.confidence[k] * a.squaredNorm();
+  }
+  const double s = num > 0 && den > 0 ? num / den : focal / 5.0;
+  const Vec2 tau = mb - s * ma;
+  p[2] = std::max(focal / s, kMinDepth);
+  p[0] = tau.x() / s, p[1] = tau.y() / s;
+}
+
+// The starting pose before any frame is fitted: the rest pose 5 m ahead of the camera.
+std::vector<double> rest_ahead(const Geometry& g) {
+  std::vector<double> p(static_cast<std::size_t>(g.dofs), 0.0);
+  p.at(2) = 5.0;
+  return p;
+}
+
+// Poses (parameter vectors, in the camera's frame) as a clip in the world the ground gives: z up,
+// x the camera's view along the floor, `origin` (in the camera's frame) at the world's origin.
+Clip to_world(const Geometry& g, const GroundFit& ground, const Vec3& origin, const std::vector<std::vector<double>>& params, double fps,
+              const std::string& name) {
+  const Mat3& world_from_cam = ground.world_from_camera;
+  const Quat turn(world_from_cam);
+  Clip c;
+  c.name = name;
+  c.skeleton = *g.sk;
+  c.fps = fps;
+  for (const auto& p : params) {
+    Pose pose = parameters_to_pose(*g.sk, p.data());
+    pose.root_pos = world_from_cam * (pose.root_pos - origin);
+    pose.rot[0] = canonical((turn * pose.rot[0]).normalized());
+    c.frames.push_back(std::move(pose));
+  }
+  return c;
+}
+
+double focal_of(const KeypointTrack& track, const ReconstructionOptions& o) {
+  const double fov = o.fov_deg > 0 ? o.fov_deg : track.fov_deg > 0 ? track.fov_deg : kDefaultFovDeg;
+  return 1.0 / std::tan(0.5 * deg_to_rad(fov));  // in half-heights
+}
+
 }  // namespace
 
 KeypointMap load_keypoint_map(const std::filesystem::path& path) {
@@ -98,58 +231,18 @@ Reconstruction reconstruct_motion(const KeypointTrack& track, const Skeleton& sk
   Reconstruction out;
   ReconstructionReport& rep = out.report;
 
-  // Keypoints onto the character's joints and sites.
-  std::vector<Binding> bindings;
-  auto point_of = [&](const std::string& name) {
-    if (const int j = sk.find(name); j >= 0) return j;
-    if (const int s = sk.find_site(name); s >= 0) return sk.num_joints() + s;
-    return -1;
-  };
-  if (map.pairs.empty()) {
-    for (std::size_t k = 0; k < track.names.size(); ++k) {
-      const int p = point_of(track.names[k]);
-      if (p >= 0) bindings.push_back({static_cast<int>(k), p});
-      else rep.unused_keypoints.push_back(track.names[k]);
-    }
-  } else {
-    for (const auto& [kp, joint] : map.pairs) {
-      const int k = track.find(kp);
-      if (k < 0) throw Error(map.source + ": keypoint '" + kp + "' is not among " + where + "'s keypoints");
-      const int p = point_of(joint);
-      if (p < 0) throw Error(map.source + ": '" + joint + "' (for keypoint '" + kp + "') is neither a joint nor a site of the character");
-      bindings.push_back({k, p});
-    }
-    for (const std::string& n : track.names)
-      if (std::none_of(map.pairs.begin(), map.pairs.end(), [&](const auto& pr) { return pr.first == n; })) rep.unused_keypoints.push_back(n);
-  }
-  if (bindings.size() < 4)
-    throw Error(where + ": only " + std::to_string(bindings.size()) +
-                " of its keypoints name joints or sites of the character (4 at least); give a keypoint map (--map)");
+  const std::vector<Binding> bindings = bind_keypoints(track, sk, map, where, rep.unused_keypoints);
 
   Geometry g{&sk, parameter_offsets(sk), sk.dof_count()};
-  const double fov = o.fov_deg > 0 ? o.fov_deg : track.fov_deg > 0 ? track.fov_deg : kDefaultFovDeg;
-  const double focal = 1.0 / std::tan(0.5 * deg_to_rad(fov));  // in half-heights
-  const double half = 0.5 * track.height;
+  const double focal = focal_of(track, o);
   const int n = track.num_frames();
 
   // Which frames can be fitted.
   std::vector<FrameData> data(static_cast<std::size_t>(n));
   bool any_world = false;
   for (int t = 0; t < n; ++t) {
-    const KeypointFrame& f = track.frames[static_cast<std::size_t>(t)];
-    FrameData& d = data[static_cast<std::size_t>(t)];
-    if (f.empty()) continue;
-    any_world = any_world || !f.world.empty();
-    for (const Binding& b : bindings) {
-      const auto k = static_cast<std::size_t>(b.keypoint);
-      if (f.confidence[k] > 0) {
-        d.seen.push_back(b);
-        d.target.emplace_back((f.pixel[k].x() - 0.5 * track.width) / half, (f.pixel[k].y() - half) / half);
-        d.confidence.push_back(f.confidence[k]);
-      }
-      if (!f.world.empty()) d.world.push_back(f.world[k]);
-    }
-    d.fit = static_cast<int>(d.seen.size()) >= o.min_keypoints && !f.world.empty();
+    data[static_cast<std::size_t>(t)] = frame_data(track, t, bindings, o.min_keypoints);
+    any_world = any_world || !track.frames[static_cast<std::size_t>(t)].world.empty();
   }
   if (!any_world)
     throw Error(where + ": no frame has 3D keypoints (\"world\"); the reconstruction starts from a per-frame 3D estimate "
@@ -183,60 +276,15 @@ Reconstruction reconstruct_motion(const KeypointTrack& track, const Skeleton& sk
   std::sort(rep.cut.begin(), rep.cut.end());
   const int m = best_last - best_first + 1;
 
-  // Raw estimate, frame by frame: rotations to the centred 3D keypoints, then the pelvis's place
-  // in closed form from the 2D ones (weak perspective: x̂ = f/Z (X_r + a)).
+  // Raw estimate, frame by frame, each from the one before.
   std::vector<std::vector<double>> raw(static_cast<std::size_t>(m), std::vector<double>(static_cast<std::size_t>(g.dofs), 0.0));
-  std::vector<double> previous(static_cast<std::size_t>(g.dofs), 0.0);
-  previous.at(2) = 5.0;  // 5 m ahead until a frame is fitted
+  std::vector<double> previous = rest_ahead(g);
   for (int i = 0; i < m; ++i) {
     const FrameData& d = data[static_cast<std::size_t>(best_first + i)];
-    std::vector<double>& p = raw[static_cast<std::size_t>(i)];
     if (!d.fit) continue;  // bridged: filled below
+    std::vector<double>& p = raw[static_cast<std::size_t>(i)];
     p = previous;
-    std::vector<Vec3> target = d.world;
-    Vec3 centre = Vec3::Zero();
-    for (const Vec3& w : target) centre += w / static_cast<double>(target.size());
-    for (Vec3& w : target) w -= centre;
-    {  // the root's rotation first, from the previous pose (or the rest pose) turned onto the keypoints
-      const std::vector<Vec3> pos = positions(g, p);
-      std::vector<Vec3> from;
-      Vec3 c = Vec3::Zero();
-      for (const Binding& b : bindings) from.push_back(pos[static_cast<std::size_t>(b.point)]), c += from.back() / static_cast<double>(bindings.size());
-      for (Vec3& v : from) v -= c;
-      const Quat turn = best_rotation(from, target);
-      const Vec3 rv = quat_to_rotvec((turn * rotvec_to_quat(Vec3(p[3], p[4], p[5]))).normalized());
-      p[3] = rv.x(), p[4] = rv.y(), p[5] = rv.z();
-    }
-    ceres::Problem problem;
-    auto* f = new WorldKeypointCost{&g, bindings, target};
-    problem.AddResidualBlock(make_cost(f, g.dofs, 1, 3 * static_cast<int>(bindings.size())), nullptr, p.data());
-    problem.SetManifold(p.data(), new ceres::SubsetManifold(g.dofs, {0, 1, 2}));
-    bound_joints(problem, p.data(), sk, g.offsets);
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = 50;
-    so.num_threads = 1;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    rep.raw_iterations += static_cast<int>(summary.iterations.size());
-    // The pelvis: scale and shift of the posed points (relative to the root) onto the 2D ones.
-    const std::vector<Vec3> pos = positions(g, p);
-    Vec2 ma = Vec2::Zero(), mb = Vec2::Zero();
-    double wsum = 0;
-    for (std::size_t k = 0; k < d.seen.size(); ++k) {
-      const Vec3 a = pos[static_cast<std::size_t>(d.seen[k].point)] - pos[0];
-      ma += d.confidence[k] * a.head<2>(), mb += d.confidence[k] * d.target[k], wsum += d.confidence[k];
-    }
-    ma /= wsum, mb /= wsum;
-    double num = 0, den = 0;
-    for (std::size_t k = 0; k < d.seen.size(); ++k) {
-      const Vec2 a = (pos[static_cast<std::size_t>(d.seen[k].point)] - pos[0]).head<2>() - ma;
-      num += d.confidence[k] * a.dot(d.target[k] - mb), den += d.confidence[k] * a.squaredNorm();
-    }
-    const double s = num > 0 && den > 0 ? num / den : focal / 5.0;
-    const Vec2 tau = mb - s * ma;
-    p[2] = std::max(focal / s, kMinDepth);
-    p[0] = tau.x() / s, p[1] = tau.y() / s;
+    fit_frame(g, bindings, d, focal, p, rep.raw_iterations);
     previous = p;
   }
   // Bridged frames: the parameters interpolated between the fitted frames around them.
@@ -384,29 +432,43 @@ Reconstruction reconstruct_motion(const KeypointTrack& track, const Skeleton& sk
   const GroundFit ground = fit_ground(cam);
   rep.ground_fitted = ground.fitted;
   rep.camera_pitch_deg = ground.pitch_deg;
-  const Mat3& world_from_cam = ground.world_from_camera;
-  const Quat turn(world_from_cam);
   const Vec3 origin = cam.front()[0] - ground.up * cam.front()[0].dot(ground.up);
-  auto to_clip = [&](const std::vector<std::vector<double>>& params, const std::string& name) {
-    Clip c;
-    c.name = name;
-    c.skeleton = sk;
-    c.fps = track.fps;
-    for (const auto& p : params) {
-      Pose pose = parameters_to_pose(sk, p.data());
-      pose.root_pos = world_from_cam * (pose.root_pos - origin);
-      pose.rot[0] = canonical((turn * pose.rot[0]).normalized());
-      c.frames.push_back(std::move(pose));
-    }
-    return c;
-  };
-  out.reconstructed = to_clip(q, "reconstructed");
-  out.raw = to_clip(raw, "raw");
+  out.reconstructed = to_world(g, ground, origin, q, track.fps, "reconstructed");
+  out.raw = to_world(g, ground, origin, raw, track.fps, "raw");
   const double lift = -clip_min_height(out.reconstructed);  // the lowest point on the floor
   for (Clip* c : {&out.reconstructed, &out.raw})
     for (Pose& p : c->frames) p.root_pos.z() += lift;
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+Pose estimate_frame_pose(const KeypointTrack& track, int frame, const Skeleton& sk, const KeypointMap& map, const ReconstructionOptions& o) {
+  track.validate();
+  sk.validate();
+  const std::string where = track.source.empty() ? std::string("keypoints") : track.source;
+  if (frame < 0 || frame >= track.num_frames())
+    throw Error(where + ": no frame " + std::to_string(frame) + " (it has " + std::to_string(track.num_frames()) + ", from 0)");
+  std::vector<std::string> unused;
+  const std::vector<Binding> bindings = bind_keypoints(track, sk, map, where, unused);
+  const FrameData d = frame_data(track, frame, bindings, o.min_keypoints);
+  if (!d.fit) {
+    if (track.frames[static_cast<std::size_t>(frame)].world.empty())
+      throw Error(where + ": frame " + std::to_string(frame) + " has no 3D keypoints (\"world\"), which a pose needs" +
+                  (track.frames[static_cast<std::size_t>(frame)].empty() ? " (no person was found in it)" : ""));
+    throw Error(where + ": frame " + std::to_string(frame) + " has " + std::to_string(d.seen.size()) +
+                " keypoints of the character seen, fewer than the " + std::to_string(o.min_keypoints) + " a pose needs");
+  }
+  Geometry g{&sk, parameter_offsets(sk), sk.dof_count()};
+  std::vector<double> p = rest_ahead(g);
+  int iterations = 0;
+  fit_frame(g, bindings, d, focal_of(track, o), p, iterations);
+  const std::vector<Vec3> cam = positions(g, p);
+  const GroundFit level = fit_ground({cam});  // one frame shows no floor: a level camera
+  const Vec3 origin = cam[0] - level.up * cam[0].dot(level.up);
+  Clip c = to_world(g, level, origin, {p}, track.fps, "pose");
+  Pose pose = c.frames.front();
+  pose.root_pos.z() -= clip_min_height(c);  // the lowest point on the floor
+  return pose;
 }
 
 }  // namespace mimic

@@ -79,4 +79,12 @@ struct Reconstruction {
 Reconstruction reconstruct_motion(const KeypointTrack& track, const Skeleton& character, const KeypointMap& map,
                                   const ReconstructionOptions& opts = {});
 
+// One frame's pose alone, as the raw estimate fits it (its joint rotations to the frame's 3D
+// keypoints), for motion completion from a still (seed 003 §8): the camera taken as level (one
+// frame shows no floor), the pelvis above the origin, the lowest point on the floor. Throws Error
+// naming the track and the frame when it has no such frame, no 3D estimate or too few keypoints
+// seen (opts.min_keypoints; the other options but fov_deg are not used).
+Pose estimate_frame_pose(const KeypointTrack& track, int frame, const Skeleton& character, const KeypointMap& map,
+                         const ReconstructionOptions& opts = {});
+
 }  // namespace mimic
