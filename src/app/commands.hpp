@@ -33,7 +33,8 @@ Skeleton load_target_skeleton(const std::filesystem::path& path);
 std::string clip_summary(const Clip& clip);
 
 // The character to play a clip on: --character (DeepMimic), else the DeepMimic character named
-// like the clip, else a simple body built on the clip's own skeleton. Throws if they do not fit.
+// like the clip (a .txt) or of the shared data whose skeleton an .mclip is on, else a simple body
+// built on the clip's own skeleton. Throws if they do not fit.
 CharacterModel character_for(const Clip& clip, const std::filesystem::path& input, const LoadOptions& load);
 
 // JSON pieces of the commands' --json files: a quoted, escaped string; a number, null when not

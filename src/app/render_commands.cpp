@@ -1,6 +1,8 @@
 // mimic render CLIP -o out.mp4; mimic character build CHARACTER -o model.xml
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "app/commands.hpp"
 #include "app/policy_video.hpp"
 #include "core/error.hpp"
@@ -13,9 +15,40 @@
 
 namespace mimic::app {
 
+namespace {
+
+// The DeepMimic character of the shared data whose skeleton the clip is on (the same joints,
+// parents and offsets): where `mimic reconstruct`, `mimic imitate` and retargeting put clips.
+// Empty when none is.
+std::filesystem::path character_with_skeleton(const Skeleton& sk) {
+  const std::filesystem::path dir = shared_data_dir() / "deepmimic" / "characters";
+  std::error_code ec;
+  if (shared_data_dir().empty() || !std::filesystem::is_directory(dir, ec)) return {};
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+    if (e.path().extension() == ".txt" && e.path().stem().string().find("_ctrl") == std::string::npos) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    Skeleton c;
+    try {
+      c = load_deepmimic_character(f).skeleton;
+    } catch (const Error&) {
+      continue;  // not a character file
+    }
+    bool same = c.joints.size() == sk.joints.size();
+    for (std::size_t j = 0; same && j < c.joints.size(); ++j)
+      same = c.joints[j].name == sk.joints[j].name && c.joints[j].parent == sk.joints[j].parent && (c.joints[j].offset - sk.joints[j].offset).norm() < 1e-6;
+    if (same) return f;
+  }
+  return {};
+}
+
+}  // namespace
+
 CharacterModel character_for(const Clip& clip, const std::filesystem::path& input, const LoadOptions& load) {
   std::filesystem::path ch_path = load.character;
   if (ch_path.empty() && input.extension() == ".txt") ch_path = guess_deepmimic_character(input);
+  if (ch_path.empty() && input.extension() == ".mclip") ch_path = character_with_skeleton(clip.skeleton);
   if (ch_path.empty()) return CharacterModel::from_skeleton(clip.skeleton, clip.name);
   std::filesystem::path ctrl = ch_path.parent_path() / (ch_path.stem().string() + "_ctrl.txt");
   CharacterModel ch = CharacterModel::from_deepmimic(ch_path, std::filesystem::exists(ctrl) ? ctrl : std::filesystem::path{});
