@@ -65,6 +65,29 @@ ShippedSkills shipped_humanoid_skills() {
   return s;
 }
 
+// Frames of each skill's clip seen from a random side with a pose estimator's errors
+// (video/synthesize.hpp's documented levels), `per_skill` of each, and the pose each gives.
+struct NoisyStill {
+  std::size_t skill = 0;
+  int frame = 0;
+  double seconds = 0;  // the frame's time
+  Pose pose;
+};
+std::vector<NoisyStill> noisy_stills(const ShippedSkills& s, const Skeleton& character, int per_skill, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<NoisyStill> out;
+  for (std::size_t i = 0; i < s.skills.size(); ++i)
+    for (int k = 0; k < per_skill; ++k) {
+      SynthesisOptions o;
+      o.azimuth_deg = std::uniform_real_distribution<double>(0, 360)(rng);
+      o.seed = rng();
+      const KeypointTrack track = synthesize_keypoints(*s.clips[i], o).track;
+      const int f = std::uniform_int_distribution<int>(0, track.num_frames() - 1)(rng);
+      out.push_back({i, f, f / track.fps, estimate_frame_pose(track, f, character, {})});
+    }
+  return out;
+}
+
 TEST(FramePose, OneFramesPoseFromItsExactKeypointsIsTheFramesPose) {
   std::filesystem::path walk_path;
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", walk_path);
@@ -162,8 +185,6 @@ TEST(MotionCompletion, NoisyFramesOfTheShippedSkillsFindTheirSkillAndFrame) {
   MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", data);
   const ShippedSkills s = shipped_humanoid_skills();
   const MotionCompletion completion(s.skills);
-  std::mt19937_64 rng(7);
-  constexpr int kTrialsPerSkill = 25;
   // The frame found is right within 0.1 s of the true one or, as a still cannot tell frames of one
   // pose apart (a guard held, a punch out and back), when its pose is this near the true frame's
   // (mean joint distance, each in its heading frame about its root).
@@ -171,26 +192,23 @@ TEST(MotionCompletion, NoisyFramesOfTheShippedSkillsFindTheirSkillAndFrame) {
   int right_skill = 0, right_frame = 0, within_time = 0, trials = 0;
   double worst = 0;
   std::string misses;
-  for (std::size_t i = 0; i < s.skills.size(); ++i) {
-    const Clip& clip = *s.clips[i];
-    for (int k = 0; k < kTrialsPerSkill; ++k, ++trials) {
-      SynthesisOptions o;
-      o.azimuth_deg = std::uniform_real_distribution<double>(0, 360)(rng);
-      o.seed = rng();
-      const KeypointTrack track = synthesize_keypoints(clip, o).track;
-      const int f = std::uniform_int_distribution<int>(0, track.num_frames() - 1)(rng);
-      const std::vector<CompletionMatch> m = completion.match(estimate_frame_pose(track, f, completion.skeleton(), {}));
-      ASSERT_EQ(m.size(), s.skills.size());
-      EXPECT_LE(m.front().distance, m.back().distance);
-      const bool skill = m.front().skill == i;
-      const double apart = skill ? heading_frame_distance(clip.skeleton, clip.frames.at(static_cast<std::size_t>(m.front().frame)), clip.frames.at(static_cast<std::size_t>(f))) : 1.0;
-      const double seconds = skill ? clip_time_distance(clip, m.front().time, f / track.fps) : 1.0;
-      const bool close_in_time = seconds <= 0.1 + 1e-3;  // 3 frames at 30 Hz (a clip's rate is not exactly 30)
-      const bool frame = close_in_time || apart <= kFrameDistance;
-      right_skill += skill, right_frame += frame, within_time += close_in_time;
-      worst = std::max(worst, apart);
-      if (!frame) misses += " " + s.skills[i]->name() + " frame " + std::to_string(f) + " -> " + s.skills[m.front().skill]->name() + " frame " + std::to_string(m.front().frame) + ";";
-    }
+  for (const NoisyStill& still : noisy_stills(s, completion.skeleton(), 25, 7)) {
+    ++trials;
+    const Clip& clip = *s.clips[still.skill];
+    const std::vector<CompletionMatch> m = completion.match(still.pose);
+    ASSERT_EQ(m.size(), s.skills.size());
+    EXPECT_LE(m.front().distance, m.back().distance);
+    const bool skill = m.front().skill == still.skill;
+    const double apart = skill ? heading_frame_distance(clip.skeleton, clip.frames.at(static_cast<std::size_t>(m.front().frame)),
+                                                        clip.frames.at(static_cast<std::size_t>(still.frame)))
+                               : 1.0;
+    const bool close_in_time = skill && clip_time_distance(clip, m.front().time, still.seconds) <= 0.1 + 1e-3;  // 3 frames at 30 Hz (a clip's rate is not exactly 30)
+    const bool frame = close_in_time || apart <= kFrameDistance;
+    right_skill += skill, right_frame += frame, within_time += close_in_time;
+    worst = std::max(worst, apart);
+    if (!frame)
+      misses += " " + s.skills[still.skill]->name() + " frame " + std::to_string(still.frame) + " -> " + s.skills[m.front().skill]->name() + " frame " +
+                std::to_string(m.front().frame) + ";";
   }
   std::printf("motion completion: the right skill in %d of %d trials, a frame within 0.1 s or %.2f m of the true one in %d (within 0.1 s: %d; "
               "the farthest pose %.3f m);%s\n", right_skill, trials, kFrameDistance, right_frame, within_time, worst, misses.c_str());
@@ -206,24 +224,15 @@ TEST(MotionCompletion, FromTheMatchedFrameTheSkillsKeepTheCharacterUp) {
   const ShippedSkills s = shipped_humanoid_skills();
   const MotionCompletion completion(s.skills);
   Controller c(s.skills, 9);
-  std::mt19937_64 rng(11);
-  constexpr int kTrialsPerSkill = 5;
   int up_from_frame = 0, up_from_pose = 0, trials = 0;
-  for (std::size_t i = 0; i < s.skills.size(); ++i) {
-    for (int k = 0; k < kTrialsPerSkill; ++k, ++trials) {
-      SynthesisOptions o;
-      o.azimuth_deg = std::uniform_real_distribution<double>(0, 360)(rng);
-      o.seed = rng();
-      const KeypointTrack track = synthesize_keypoints(*s.clips[i], o).track;
-      const int f = std::uniform_int_distribution<int>(0, track.num_frames() - 1)(rng);
-      const Pose pose = estimate_frame_pose(track, f, completion.skeleton(), {});
-      const CompletionMatch best = completion.match(pose).front();
-      for (const auto at : {MotionCompletion::StartAt::Frame, MotionCompletion::StartAt::Pose}) {
-        completion.start(c, pose, best, at);
-        bool fell = false;
-        for (int step = 0; step < 60 && !fell; ++step) fell = c.step().fell;
-        (at == MotionCompletion::StartAt::Frame ? up_from_frame : up_from_pose) += !fell;
-      }
+  for (const NoisyStill& still : noisy_stills(s, completion.skeleton(), 5, 11)) {
+    ++trials;
+    const CompletionMatch best = completion.match(still.pose).front();
+    for (const auto at : {MotionCompletion::StartAt::Frame, MotionCompletion::StartAt::Pose}) {
+      completion.start(c, still.pose, best, at);
+      bool fell = false;
+      for (int step = 0; step < 60 && !fell; ++step) fell = c.step().fell;
+      (at == MotionCompletion::StartAt::Frame ? up_from_frame : up_from_pose) += !fell;
     }
   }
   std::printf("motion completion: up for 2 s in %d of %d trials from the matched frame, %d from the pose seen\n", up_from_frame, trials, up_from_pose);
