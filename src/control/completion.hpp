@@ -41,7 +41,6 @@ class MotionCompletion {
   void start(Controller& controller, const Pose& pose, const CompletionMatch& match, StartAt at = StartAt::Frame) const;
 
   const Skeleton& skeleton() const { return skeleton_; }
-  const std::vector<std::shared_ptr<const Skill>>& skills() const { return skills_; }
 
  private:
   std::vector<std::shared_ptr<const Skill>> skills_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <functional>
 #include <random>
 #include <tuple>
 
@@ -140,6 +141,21 @@ struct Controller::Impl {
     push_left = std::max(0.0, push_left - dt);
   }
 
+  // A new episode of skill `target`, made active: the push under way dropped, `first` resetting
+  // its environment, no state kept from before and no request pending.
+  void new_episode(std::size_t target, const std::function<Eigen::VectorXd(Env&)>& first) {
+    push_left = 0.0;
+    if (pushing)
+      if (CharacterEnv* c = character_of(env())) c->set_pushes(c->config().pushes);
+    pushing = false;
+    active = target;
+    begin(first(env()));
+    states.clear();
+    remember();
+    pending = skills.size();
+    delay_left = 0;
+  }
+
   void stack() {
     const Skill& s = skill();
     input.resize(s.input_size());
@@ -172,15 +188,7 @@ Controller::~Controller() = default;
 
 void Controller::reset() {
   Impl& c = *impl_;
-  c.push_left = 0.0;
-  if (c.pushing)
-    if (CharacterEnv* ch = character_of(c.env())) ch->set_pushes(ch->config().pushes);
-  c.pushing = false;
-  c.begin(c.env().reset(c.rng));
-  c.states.clear();
-  c.remember();
-  c.pending = c.skills.size();
-  c.delay_left = 0;
+  c.new_episode(c.active, [&](Env& env) { return env.reset(c.rng); });
 }
 
 void Controller::start(const std::string& name, const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel, const std::vector<Eigen::VectorXd>& past,
@@ -223,16 +231,7 @@ void Controller::start(const std::string& name, const Eigen::VectorXd& qpos, con
   for (const Eigen::VectorXd& q : past) state.past.push_back(read(q, nullptr).first);
   std::tie(state.pose, state.velocity) = read(qpos, &qvel);
   state.time = clip_time;
-  c.push_left = 0.0;
-  if (c.pushing)
-    if (CharacterEnv* ch = character_of(c.env())) ch->set_pushes(ch->config().pushes);
-  c.pushing = false;
-  c.active = target;
-  c.begin(character->reset(state));
-  c.states.clear();
-  c.remember();
-  c.pending = c.skills.size();
-  c.delay_left = 0;
+  c.new_episode(target, [&](Env&) { return character->reset(state); });
 }
 
 StepInfo Controller::step() {
