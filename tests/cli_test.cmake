@@ -430,6 +430,19 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
     message(FATAL_ERROR "mimic imitate --resume exported no model")
   endif()
   run_fails("excludes" imitate --resume --method gail -o ${OUT}/imitate_run)
+  # Steering (--task heading) from the model above: the goal mixed in, the input widened, the
+  # response to a commanded turn measured.
+  run_ok(imitate ${OUT}/jj_mirror.mclip --task heading --from ${OUT}/imitated_model -o ${OUT}/imitate_steer --samples 1 --trials 1
+         --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2)
+  file(READ ${OUT}/imitate_steer/config.yaml imitate_steer_config)
+  expect_in("${imitate_steer_config}" "goal: heading")
+  expect_in("${imitate_steer_config}" "rewards.1={source: env, weight: 0.5} policy.learn_std=false policy.log_std=-1.66")
+  run_ok(eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --steering 90 --steering-trials 2 --json ${OUT}/steer_eval.json)
+  expect_in("${LAST_OUT}" "2 trials a turn")
+  file(READ ${OUT}/steer_eval.json steer_eval)
+  expect_in("${steer_eval}" "\"steering\": {\"trials\": 2")
+  run_fails("was not trained with a heading goal" eval ${OUT}/imitated_model --episodes 1 --trials 1 --steering 90)
+  run_fails("use --method iccgan or gail, not tracking" imitate ${OUT}/jj_mirror.mclip --task heading --method tracking -o ${OUT}/imitate_steer2)
   # A CMU clip retargeted by a map, tracked (seed 003's recipe).
   run_ok(imitate ${DATA}/cmu-bvh/131_01.bvh --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking
          -o ${OUT}/imitate_cmu --samples 1 --trials 1 --video-seconds 0 --threads 1 --set collect.samples=128 --set collect.envs=2
@@ -451,7 +464,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_fails("; give --map MAP.yaml to retarget it" imitate ${DATA}/cmu-bvh/131_01.bvh -o ${OUT}/imitate_unfit)
   run_fails("broken.bvh" imitate ${OUT}/broken.bvh -o ${OUT}/imitate_broken)
   run_fails("no run to resume" imitate --resume -o ${OUT}/imitate_nothing)
-  foreach(d imitate_unfit imitate_broken imitate_nothing imitate_two)
+  foreach(d imitate_unfit imitate_broken imitate_nothing imitate_two imitate_steer2)
     if(EXISTS ${OUT}/${d})
       message(FATAL_ERROR "a refused mimic imitate left ${OUT}/${d} behind")
     endif()

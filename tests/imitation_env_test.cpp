@@ -193,6 +193,47 @@ TEST(ImitationEnv, TheHeadingGoalIsRedrawnEveryPeriodAndAtEveryStart) {
   EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
 }
 
+TEST(ImitationEnv, ASteeringGoalTurnsByAtMostGoalTurnFromWhereTheCharacterFaces) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  ImitationEnvConfig cfg = heading_goal();
+  cfg.goal_turn = 30.0;
+  cfg.goal_period = 0.1;  // 3 control steps
+  auto env = make_imitation_env(ch, nullptr, cfg);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
+  std::mt19937_64 rng(7);
+  // A start facing 170 degrees: its targets lie within 30 degrees of it, across the +-180 seam.
+  InitState start = flying(ch);
+  start.pose.rot[0] = heading_rotation(170.0 * kPi / 180.0) * start.pose.rot[0];
+  double lowest = 1e9, highest = -1e9;
+  for (int episode = 0; episode < 40; ++episode) {
+    env->reset(rng);
+    const double facing = heading_angle(env->world().pose().rot[0]);
+    const double turn = std::remainder(goal_heading(*env) - facing, 2 * kPi);
+    EXPECT_LE(std::abs(turn), 30.0 * kPi / 180.0 + 1e-9) << episode;
+    lowest = std::min(lowest, turn), highest = std::max(highest, turn);
+  }
+  EXPECT_LT(lowest, -20.0 * kPi / 180.0);  // both ways, most of the range
+  EXPECT_GT(highest, 20.0 * kPi / 180.0);
+  env->reset(start);
+  for (int t = 1; t <= 3; ++t) env->step(zero);  // the period's draw
+  const double facing = heading_angle(env->world().pose().rot[0]);
+  const double target = goal_heading(*env);
+  EXPECT_GE(target, -kPi);
+  EXPECT_LT(target, kPi);
+  EXPECT_LE(std::abs(std::remainder(target - facing, 2 * kPi)), 30.0 * kPi / 180.0 + 1e-9);
+  // 0: straight on, where the character faces at the draw.
+  cfg.goal_turn = 0.0;
+  auto straight = make_imitation_env(ch, nullptr, cfg);
+  straight->reset(start);
+  for (int t = 1; t <= 3; ++t) straight->step(zero);
+  EXPECT_NEAR(goal_heading(*straight), heading_angle(straight->world().pose().rot[0]), 1e-12);
+  cfg.goal_turn = -1.0;
+  EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
+  cfg.goal_turn = 181.0;
+  EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
+}
+
 TEST(ImitationEnv, BuildsAProprioceptiveEnvWithoutAReference) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

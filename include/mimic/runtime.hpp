@@ -154,6 +154,14 @@ class Controller {
   // thrown, "env.projectiles.every=0" (mass, size and speed are settings too). A cube stays in the
   // world of the skill that threw it: a hand-over leaves it behind.
   bool throw_cube();
+  // Steering, for skills trained with a heading goal (`mimic imitate --task heading`, seed 004
+  // eq. 8): the direction they walk towards from the next step on, as a world yaw (radians about
+  // z from +x), held until changed. Before a command they follow the targets their environment
+  // draws; skills without the goal ignore it. Throws mimic::Error for a yaw that is not finite.
+  void set_heading(double yaw);
+  double heading() const;                          // the commanded yaw; NaN before a command
+  bool steerable(const std::string& skill) const;  // trained with a heading goal; throws for an unknown skill
+  double facing() const;                           // where the character faces now (its root's world yaw)
 
   const std::string& skill() const;  // the active one's name
   const std::vector<std::shared_ptr<const Skill>>& skills() const;

@@ -4,7 +4,8 @@
 // seed 004's projectile test (frames survived per cube mass; with --recover, the fraction of the
 // time performing without and with get-up skills); with --latency, the policy's
 // forward-pass time at batch 1 and, for an adversarial run, its discriminators'; with --switch, a
-// policy over behaviour contexts changing behaviour on command. A table on the terminal, and the
+// policy over behaviour contexts changing behaviour on command; with --steering, a skill with a
+// heading goal turning on command. A table on the terminal, and the
 // same figures as JSON with --json.
 #include <spdlog/spdlog.h>
 
@@ -293,6 +294,7 @@ void evaluate(const EvalArgs& args) {
   if (args.latency) json += latency(args, skill);
   if (!args.recover.empty()) json += recovery(args);
   if (!args.transitions.empty()) json += transitions(args, run_skill(args.run, args.settings, /*discriminators=*/true));
+  if (!args.steering.empty()) json += steering(args);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 
@@ -343,6 +345,10 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   ev->add_option("--recover-tau", args->recover_tau, "the score at which the skill takes the character back from a get-up")
       ->capture_default_str();
+  ev->add_option("--steering", args->steering, "commanded turns in degrees, e.g. 45,90: how a skill with a heading goal (env.goal: heading) turns")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 180.0));
+  ev->add_option("--steering-trials", args->steering_trials, "trials per turn")->capture_default_str()->check(CLI::PositiveNumber);
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();

@@ -1,15 +1,21 @@
 // `mimic eval`'s measurements in runtime sessions of several skills (control/): seed 004 §6.5's
-// transition test (--transitions) and robustness with recovery (--recover).
+// transition test (--transitions) and robustness with recovery (--recover); and a steered skill's
+// response to commanded turns (--steering).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "app/commands.hpp"
 #include "app/evaluate.hpp"
 #include "app/run_skill.hpp"
 #include "control/performing.hpp"
+#include "control/skill_impl.hpp"
 #include "control/transitions.hpp"
 #include "core/error.hpp"
+#include "core/statistics.hpp"
+#include "env/imitation_env.hpp"
+#include "learn/imitation/steering_eval.hpp"
 
 namespace mimic::app {
 
@@ -78,6 +84,48 @@ std::string recovery(const EvalArgs& args) {
                         "\"with\": {{\"performing_mean\": {}, \"performing_std\": {}, \"downs_mean\": {}, \"recovered_mean\": {}}}}}",
                         i ? ", " : "", json_number(mass), json_number(without.mean()), json_number(without.std()), json_number(without.mean_downs()),
                         json_number(with.mean()), json_number(with.std()), json_number(with.mean_downs()), json_number(with.mean_recoveries()));
+  }
+  return json + "]}";
+}
+
+// A skill trained with a heading goal, commanded to turn (learn/imitation/steering_eval.hpp); the
+// environment's own redraws of the target are turned off so that the command is the only one.
+std::string steering(const EvalArgs& args) {
+  SteeringOptions o;
+  o.trials = args.steering_trials;
+  o.seed = args.seed;
+  std::vector<std::string> settings = args.settings;
+  settings.push_back("env.goal_period=1000000");
+  settings.push_back(fmt::format("env.max_seconds={}", o.settle_seconds + o.hold_seconds + 1.0));
+  const std::shared_ptr<const Skill> skill = run_skill(args.run, settings);
+  const std::unique_ptr<Env> env = make_skill_env(*skill);
+  CharacterEnv* character = character_of(*env);
+  if (!character || !has_heading_goal(*character))
+    throw Error(args.run.string() + ": --steering: the skill was not trained with a heading goal (env.goal: heading; `mimic imitate --task heading`)");
+  spdlog::info("  steering        {} trials a turn: {:.0f} s straight on, then a turn from the heading held {:.0f} s; error: the command against "
+               "the root's travel over the last {:.1f} s, read {:.0f} s after it",
+               o.trials, o.settle_seconds, o.hold_seconds, o.travel_seconds, o.respond_seconds);
+  std::string json = ", \"steering\": {\"trials\": " + std::to_string(o.trials) + ", \"respond_seconds\": " + json_number(o.respond_seconds) +
+                     ", \"tolerance_degrees\": " + json_number(o.tolerance_degrees) + ", \"turns\": [";
+  for (std::size_t i = 0; i < args.steering.size(); ++i) {
+    o.turn_degrees = args.steering[i];
+    SteeringReport r;
+    try {
+      r = measure_steering(*character, [&skill](const Eigen::VectorXd& input) { return skill->act(input); }, skill->history(), o);
+    } catch (const Error& e) {
+      throw Error(args.run.string() + ": --steering: " + e.what());
+    }
+    const double median_time = median_of(r.seconds_to_tolerance);
+    spdlog::info("    {:5.0f} deg     within {:.0f} deg after {:.0f} s: {:3.0f} % ({} fell); error {:.1f} deg median, {:.1f} mean; first within "
+                 "{:.0f} deg: {} (median); {:.2f} m/s along the command",
+                 o.turn_degrees, o.tolerance_degrees, r.respond_seconds, 100.0 * r.success_rate(), r.falls, median_of(r.error_degrees),
+                 mean_of(r.error_degrees), o.tolerance_degrees, std::isfinite(median_time) ? fmt::format("after {:.2f} s", median_time) : "never",
+                 mean_of(r.speed_along));
+    json += fmt::format("{}{{\"turn_degrees\": {}, \"success_rate\": {}, \"falls\": {}, \"error_degrees_median\": {}, "
+                        "\"error_degrees_mean\": {}, \"error_degrees\": {}, \"seconds_to_tolerance_median\": {}, \"speed_along_mean\": {}}}",
+                        i ? ", " : "", json_number(o.turn_degrees), json_number(r.success_rate()), r.falls, json_number(median_of(r.error_degrees)),
+                        json_number(mean_of(r.error_degrees)), json_numbers(r.error_degrees), json_number(median_time),
+                        json_number(mean_of(r.speed_along)));
   }
   return json + "]}";
 }

@@ -29,6 +29,8 @@ struct EvalArgs {
   std::vector<double> transition_taus;  // empty: TransitionOptions::thresholds
   std::vector<std::filesystem::path> recover;  // get-up skills: robustness with recovery at each mass of `masses`
   double recover_tau = 0.2;  // the score at which the skill takes the character back from a get-up
+  std::vector<double> steering;  // commanded turns (degrees) for a skill with a heading goal
+  int steering_trials = 20;
 };
 
 // Measures the run or model directory `args.run` as `mimic eval` does: a table on the terminal,
@@ -36,10 +38,12 @@ struct EvalArgs {
 void evaluate(const EvalArgs& args);
 
 // The measurements in runtime sessions (app/eval_sessions.cpp), each as its JSON member with a
-// leading ", ": the transition test between `skill` and args.transitions, and robustness with
-// recovery by args.recover.
+// leading ", ": the transition test between `skill` and args.transitions, robustness with
+// recovery by args.recover, and the response to steering commands.
 std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>& skill);
 std::string recovery(const EvalArgs& args);
+// Steering (learn/imitation/steering_eval.hpp) at each turn of args.steering.
+std::string steering(const EvalArgs& args);
 // The run's environment for seed 004's projectile test at `mass` (0: no cubes): the user's --set,
 // then cubes at the torso every frame and episodes a second longer than --robustness-seconds.
 std::vector<std::string> projectile_settings(const EvalArgs& args, double mass);

@@ -43,6 +43,7 @@ struct ImitateArgs {
   std::vector<fs::path> clips;
   fs::path out, map, from;
   std::string method = "iccgan";
+  std::string task = "none";  // "heading": steering (task_settings)
   LoadOptions load;  // load.character: the character (default: the recipe's humanoid)
   std::vector<std::string> settings;  // --set KEY.PATH=VALUE over the recipe, recorded in the run's config
   long long samples = 0;  // 0: the recipe's budget (a resumed run: its own)
@@ -76,6 +77,7 @@ std::string command_line(const ImitateArgs& a) {
   if (!a.from.empty()) line += " --from " + a.from.string();
   if (a.samples > 0) line += fmt::format(" --samples {}", a.samples);
   if (a.seed != 1) line += fmt::format(" --seed {}", a.seed);
+  if (a.task != "none") line += " --task " + a.task;
   for (const std::string& setting : a.settings) line += " --set " + setting;
   return line;
 }
@@ -110,12 +112,30 @@ std::vector<Clip> clips_on_character(const ImitateArgs& a, const fs::path& chara
   return clips;
 }
 
+// The recipe's changes for --task heading (seed 004 eq. 8's goal mixing, docs/imitate.md): the
+// environment draws a target heading every 4 s within 90 degrees of where the character faces,
+// the policy observes it, and the reward is 0.5 of the goal term plus 0.5 of the recipe's
+// discriminator. From a trained skill (--from) the exploration noise is held at sigma = e^-1.66
+// (0.19 rad): a trained skill's own noise is too small to find the turns a new goal asks for.
+std::vector<std::string> task_settings(const ImitateArgs& a) {
+  if (a.task == "none") return {};
+  std::vector<std::string> s{"env.goal=heading", "env.goal_turn=90", "env.alive_bonus=0", "env.control_weight=0", "rewards.0.weight=0.5",
+                             "rewards.1={source: env, weight: 0.5}"};
+  if (!a.from.empty()) {
+    s.emplace_back("policy.learn_std=false");
+    s.emplace_back("policy.log_std=-1.66");
+  }
+  return s;
+}
+
 // A new run: clips (and a given character) copied in, the recipe's config with them, the clips'
 // demonstrations.
 void start_run(const ImitateArgs& a, const Recipe& recipe) {
   if (a.clips.empty()) throw Error("imitate: give one clip or more (or --resume -o RUN to go on with a run)");
   if (fs::exists(a.out) && !(fs::is_directory(a.out) && fs::is_empty(a.out)))
     throw Error(a.out.string() + " already exists: `mimic imitate --resume -o " + a.out.string() + "` goes on with it; or choose another -o");
+  if (a.task != "none" && a.method == "tracking")
+    throw Error("--task " + a.task + " mixes its goal with an adversarial reward: use --method iccgan or gail, not tracking");
   if (a.method == "tracking" && a.clips.size() != 1)
     throw Error("--method tracking follows one clip; give one (iccgan and gail learn one policy from several)");
   fs::path character = a.load.character;
@@ -130,7 +150,9 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   }
   const std::vector<Clip> clips = clips_on_character(a, character);
   const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
-  const TrainConfig recipe_cfg = parse_train_config(override_config(recipe.text, recipe_source, a.settings), recipe_source);
+  std::vector<std::string> own = task_settings(a);
+  own.insert(own.end(), a.settings.begin(), a.settings.end());
+  const TrainConfig recipe_cfg = parse_train_config(override_config(recipe.text, recipe_source, own), recipe_source);
   const long long per_iteration = recipe_cfg.collect.samples * ranks::size();  // every rank's (mpirun)
   // The recipe's budget in samples, however many ranks share it.
   const long long samples = a.samples > 0 ? a.samples : static_cast<long long>(recipe_cfg.collect.samples) * recipe_cfg.iterations;
@@ -142,7 +164,7 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   // One clip is the environment's reference (what eval and the video's ghost compare with).
   settings.push_back(clips.size() == 1 ? "env.clip=" + clip_list : "env.clip=[" + clip_list + "]");
   if (!a.load.character.empty()) settings.push_back("env.character=" + json_string("character/" + character.filename().string()));
-  settings.insert(settings.end(), a.settings.begin(), a.settings.end());  // the user's last: they win
+  settings.insert(settings.end(), own.begin(), own.end());  // the task's, then the user's last: they win
 
   // Everything is known to fit: write the run (and take it away again if that fails: it was new).
   try {
@@ -292,6 +314,7 @@ void write_report(const ImitateArgs& a, bool video, int processes) {
 void imitate(const ImitateArgs& a) {
   if (a.resume && !a.from.empty()) throw Error("--from starts a new run; a resumed run goes on from its own weights");
   if (a.resume && !a.settings.empty()) throw Error("--set: a resumed run keeps the config it was started with");
+  if (a.resume && a.task != "none") throw Error("--task: a resumed run keeps the task it was started with");
   if (a.resume) {
     if (!a.clips.empty()) throw Error("--resume goes on with the run's own clips: give none");
     if (!fs::exists(a.out / "config.yaml") || !fs::exists(a.out / "checkpoint.pt"))
@@ -354,6 +377,9 @@ void add_imitate_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--from", args->from, "start from a trained skill's weights (a model or run directory), e.g. a shipped walk")
       ->check(CLI::ExistingPath);
+  cmd->add_option("--task", args->task, "none, or heading: steering, a target direction the skill walks towards (seed 004 eq. 8)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "heading"}));
   cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();

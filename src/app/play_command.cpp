@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <numbers>
 #include <thread>
 
 #include "app/commands.hpp"
@@ -109,7 +110,8 @@ void press(const std::string& key, PlaySession& session, View& view) {
   } else if (key == "v") {
     view.record_toggled = true;
   } else if (key == "left" || key == "right") {
-    view.azimuth_offset += key == "left" ? -15 : 15;  // (no shipped skill takes a heading: the arrows turn the camera)
+    // Steer a skill that takes a heading (30 degrees a press); without one, turn the camera.
+    if (!session.steer(key == "left" ? 30.0 : -30.0)) view.azimuth_offset += key == "left" ? -15 : 15;
   } else if (key == "up" || key == "down") {
     view.distance_offset = std::clamp(view.distance_offset + (key == "up" ? -0.5 : 0.5), -3.0, 10.0);
   } else if (key == "escape") {
@@ -139,8 +141,12 @@ Overlay overlay(PlaySession& s, const View& view) {
     o.left += fmt::format("{} {}\n", i + 1, c.skills()[i]->name());
     o.right += std::isnan(scores[i]) ? "no discriminator\n" : fmt::format("{:+.2f}\n", scores[i]);
   }
+  if (!std::isnan(c.heading())) {
+    o.left += "heading\n";
+    o.right += fmt::format("{:.0f} deg commanded, {:.0f} deg facing\n", c.heading() * 180.0 / std::numbers::pi, c.facing() * 180.0 / std::numbers::pi);
+  }
   o.left += "keys";
-  o.right += "1-9 skill, p push, b cube, r reset, c camera, v record, space pause";
+  o.right += "1-9 skill, arrows steer or turn the camera, p push, b cube, r reset, c camera, v record, space pause";
   return o;
 }
 
@@ -315,7 +321,7 @@ void add_play_command(CLI::App& app) {
   play->add_option("--seconds", a->seconds, "stop after this long (headless default: 2 s past the script's last key)")->check(CLI::PositiveNumber);
   play->add_flag("--headless", a->headless, "no window: run as fast as possible, film into -o");
   play->add_option("-o,--output", a->output, "video (.mp4): headless, the whole session; in the window, what v records (default play.mp4)");
-  play->add_option("--json", a->json, "the session's events: [{t, event, skill}] (request, switch, dropped, down, recovering, recovered, push, cube, reset)");
+  play->add_option("--json", a->json, "the session's events: [{t, event, skill}] (request, switch, dropped, down, recovering, recovered, push, cube, steer, reset)");
   play->add_option("--screenshot", a->screenshot, "the window's last frame, as a PPM picture");
   play->add_option("--width", a->width, "pixels")->capture_default_str()->check(CLI::Range(16, 1920));
   play->add_option("--height", a->height, "pixels")->capture_default_str()->check(CLI::Range(16, 1080));

@@ -1,6 +1,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <functional>
 #include <random>
@@ -11,6 +12,7 @@
 #include "core/error.hpp"
 #include "env/character_env.hpp"
 #include "env/context_env.hpp"
+#include "env/imitation_env.hpp"
 
 namespace mimic {
 
@@ -56,6 +58,17 @@ struct Controller::Impl {
   Eigen::Vector3d push_force = Eigen::Vector3d::Zero();
   double push_left = 0.0;   // seconds of the push still to come
   bool pushing = false;     // the active environment holds a push of ours
+  double heading = std::nan("");  // the commanded world yaw (set_heading); NaN: none
+
+  // The commanded heading as the active skill's target, its newest frame showing it (the
+  // environment's own redraws are overridden step by step). Nothing for a skill without the goal.
+  void apply_heading() {
+    CharacterEnv* character = character_of(env());
+    if (std::isnan(heading) || !character || !has_heading_goal(*character)) return;
+    set_goal_heading(*character, heading);
+    for (const ObservationSlice& part : env().observation_layout())
+      if (part.name == "goal") frames.back().segment(part.offset, 2) = goal_observation(*character);
+  }
 
   Env& env() { return *envs[active]; }
   const Skill& skill() const { return *skills[active]; }
@@ -236,6 +249,7 @@ void Controller::start(const std::string& name, const Eigen::VectorXd& qpos, con
 
 StepInfo Controller::step() {
   Impl& c = *impl_;
+  c.apply_heading();
   c.stack();
   c.action = c.skill().act(c.input);
   c.apply_push();
@@ -360,6 +374,21 @@ const std::vector<std::shared_ptr<const Skill>>& Controller::skills() const { re
 double Controller::control_dt() const { return impl_->dt; }
 double Controller::time() const { return static_cast<double>(impl_->steps) * impl_->dt; }
 long long Controller::steps() const { return impl_->steps; }
+void Controller::set_heading(double yaw) {
+  if (!std::isfinite(yaw)) throw Error("set_heading: the yaw must be a finite number of radians");
+  impl_->heading = std::remainder(yaw, 2 * kPi);
+}
+double Controller::heading() const { return impl_->heading; }
+bool Controller::steerable(const std::string& skill) const {
+  Env& env = *impl_->envs[impl_->index_of(skill)];
+  const CharacterEnv* character = character_of(env);
+  return character && has_heading_goal(*character);
+}
+double Controller::facing() const {
+  const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
+  return character ? heading_angle(character->world().pose().rot[0]) : 0.0;
+}
+
 Eigen::Vector3d Controller::root_position() const {
   Env& env = *impl_->envs[impl_->active];
   if (const CharacterEnv* c = character_of(env)) return c->world().root_position();

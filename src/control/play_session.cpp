@@ -53,6 +53,15 @@ void PlaySession::push() {
   push(Eigen::Vector3d(std::cos(a), std::sin(a), 0.0));
 }
 
+bool PlaySession::steer(double degrees) {
+  const auto& skills = controller_.skills();
+  if (std::none_of(skills.begin(), skills.end(), [this](const auto& s) { return controller_.steerable(s->name()); })) return false;
+  const double from = std::isnan(controller_.heading()) ? controller_.facing() : controller_.heading();
+  controller_.set_heading(from + degrees * std::numbers::pi / 180.0);
+  log("steer", controller_.skill());
+  return true;
+}
+
 bool PlaySession::throw_cube() {
   if (!controller_.throw_cube()) return false;
   log("cube", controller_.skill());

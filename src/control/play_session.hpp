@@ -17,7 +17,7 @@ namespace mimic {
 
 struct PlayEvent {
   double t = 0.0;     // seconds since the session started (resets do not restart it)
-  std::string event;  // request, switch, dropped, down, recovering, recovered, push, cube, reset
+  std::string event;  // request, switch, dropped, down, recovering, recovered, push, cube, steer, reset
   std::string skill;  // the requested skill, the one taking over, the active one
 };
 
@@ -45,6 +45,10 @@ class PlaySession {
   void push();
   // Throws a cube at the torso; false where the active skill's world has none (Controller::throw_cube).
   bool throw_cube();
+  // Turns the commanded heading by `degrees` (positive: to the left), from the last command or,
+  // before one, from where the character faces; false (and nothing commanded) where no skill of
+  // the session takes a heading (Controller::steerable).
+  bool steer(double degrees);
   // A new start of the first skill.
   void reset();
   // One control step, and the events it brought.

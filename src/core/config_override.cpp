@@ -35,8 +35,13 @@ std::string override_config(const std::string& text, const std::string& source, 
         } catch (const std::exception&) {
           used = 0;
         }
+        if (used == key.size() && index == cur.size() && dot == std::string::npos) {  // one past the end: appended
+          cur.push_back(value);
+          break;
+        }
         if (used != key.size() || index >= cur.size())
-          throw Error("--set '" + setting + "': '" + key + "' is not an index of a " + std::to_string(cur.size()) + "-element list");
+          throw Error("--set '" + setting + "': '" + key + "' is not an index of a " + std::to_string(cur.size()) +
+                      "-element list (" + std::to_string(cur.size()) + " appends an element)");
         next.reset(cur[index]);
       } else if (cur.IsMap() || cur.IsNull() || !cur.IsDefined()) {  // absent sections are created
         if (dot == std::string::npos) {

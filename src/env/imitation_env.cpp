@@ -58,6 +58,7 @@ void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::v
     if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
   if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_period > 0) || !std::isfinite(cfg.goal_period))
     fail("goal_speed and goal_weight must be non-negative and goal_period positive");
+  if (!(cfg.goal_turn >= 0 && cfg.goal_turn <= 180)) fail("goal_turn must be in [0, 180] degrees");
   if (cfg.init == ImitationEnvConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
   if (cfg.env.max_drift > 0 && cfg.init != ImitationEnvConfig::Init::Mocap)
@@ -121,11 +122,12 @@ class ImitationEnv final : public CharacterEnv {
 
   using CharacterEnv::reset;
   Eigen::VectorXd reset(std::mt19937_64& rng) override {
-    if (has_goal()) {  // no draw otherwise: runs without a goal keep their random sequence
-      goal_rng_.seed(rng());
-      draw_goal();
-    }
-    return CharacterEnv::reset(rng);
+    if (!has_goal()) return CharacterEnv::reset(rng);  // no draw: runs without a goal keep their random sequence
+    goal_rng_.seed(rng());
+    Eigen::VectorXd observation = CharacterEnv::reset(rng);
+    draw_goal();  // after the start is placed: a turn is drawn from where the character faces
+    observe_goal(observation.tail(2));
+    return observation;
   }
 
   StepResult step(const Eigen::VectorXd& action) override {
@@ -142,11 +144,26 @@ class ImitationEnv final : public CharacterEnv {
   }
 
   bool has_goal() const { return cfg_.goal == ImitationEnvConfig::Goal::Heading; }
+  Eigen::Vector2d goal_observation() const {
+    Eigen::Vector2d out;
+    observe_goal(out);
+    return out;
+  }
   double goal() const { return goal_; }
   void set_goal(double yaw) { goal_ = yaw; }
 
  private:
-  void draw_goal() { goal_ = std::uniform_real_distribution<double>(-kPi, kPi)(goal_rng_); }
+  // Any direction (as drawn before goal_turn existed, so such runs keep their sequence), or within
+  // goal_turn of where the character faces now (0: straight on), wrapped into [-pi, pi).
+  void draw_goal() {
+    if (cfg_.goal_turn >= 180.0) {
+      goal_ = std::uniform_real_distribution<double>(-kPi, kPi)(goal_rng_);
+      return;
+    }
+    const double turn = cfg_.goal_turn * kPi / 180.0;
+    const double yaw = heading_angle(world().pose().rot[0]) + (turn > 0 ? std::uniform_real_distribution<double>(-turn, turn)(goal_rng_) : 0.0);
+    goal_ = yaw - 2 * kPi * std::floor((yaw + kPi) / (2 * kPi));
+  }
   // The target's cos and sin in the character's heading frame.
   void observe_goal(Eigen::Ref<Eigen::VectorXd> out) const {
     const double relative = goal_ - heading_angle(world().pose().rot[0]);
@@ -219,6 +236,17 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch,
     });
   }
   return env;
+}
+
+bool has_heading_goal(const CharacterEnv& env) {
+  const auto* h = dynamic_cast<const ImitationEnv*>(&env);
+  return h && h->has_goal();
+}
+
+Eigen::Vector2d goal_observation(const CharacterEnv& env) {
+  const auto* h = dynamic_cast<const ImitationEnv*>(&env);
+  if (!h || !h->has_goal()) throw Error("goal_observation: not an imitation environment with goal: heading");
+  return h->goal_observation();
 }
 
 }  // namespace mimic

@@ -47,8 +47,9 @@ struct ImitationEnvConfig {
   double lateral_weight = 0.1;   // per m off the centre line
   double control_weight = 1e-3;  // per rad^2 of axis-angle PD targets (28 values for humanoid3d)
   double init_noise = 0.02;      // rad: uniform +- on each joint axis at every start
-  // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn uniformly at every start
-  // and every goal_period seconds. With Goal::Heading the forward and lateral terms give way to
+  // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn at every start and every
+  // goal_period seconds, uniformly within goal_turn degrees of the character's heading at the draw
+  // (180: any direction; a steering command turns by less; 0: straight on, the plain walk). With Goal::Heading the forward and lateral terms give way to
   //   goal   goal_weight * exp(-0.25 (goal_speed - d . v)^2), d the target direction, v the root's
   //          mean horizontal velocity over the step
   // and the observation gains "goal": cos and sin of the target direction in the heading frame.
@@ -57,6 +58,7 @@ struct ImitationEnvConfig {
   double goal_speed = 1.0;   // m/s along the target direction
   double goal_period = 4.0;  // s between targets
   double goal_weight = 1.0;
+  double goal_turn = 180.0;  // degrees, in [0, 180]
 
   static CharacterEnvConfig defaults() {
     CharacterEnvConfig c;
@@ -83,6 +85,9 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch, std::
 // (it holds until the next start or the next goal_period). Error for an env without that goal.
 double goal_heading(const CharacterEnv& env);
 void set_goal_heading(CharacterEnv& env, double yaw);
+bool has_heading_goal(const CharacterEnv& env);
+// The observation's "goal" part for the target now: its cos and sin in the character's heading frame.
+Eigen::Vector2d goal_observation(const CharacterEnv& env);
 
 // `s` moved to the start of the track: root over the origin facing +X, its height kept, its
 // velocities, past poses and source clip's placement turned with it.

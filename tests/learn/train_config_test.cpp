@@ -155,6 +155,12 @@ TEST(OverrideConfig, SetsNestedKeysAndListElementsAndNamesBadPaths) {
   EXPECT_NE(error("ppo.clip").find("expected KEY.PATH=VALUE"), std::string::npos);
   EXPECT_NE(error("ppo.clip.low=1").find("'ppo.clip' is a value, not a section"), std::string::npos);
   EXPECT_NE(error("rewards.1.weight=1").find("'1' is not an index of a 1-element list"), std::string::npos);
+  EXPECT_NE(error("rewards.2={source: env}").find("'2' is not an index of a 1-element list (1 appends"), std::string::npos);
+  // The list's size as the last index appends an element.
+  const TrainConfig two = parse_train_config(override_config(text, "x.yaml", {"rewards.1={source: env, weight: 0.25}"}), "x.yaml");
+  ASSERT_EQ(two.rewards.size(), 2u);
+  EXPECT_EQ(two.rewards.at(1).source, "env");
+  EXPECT_DOUBLE_EQ(two.rewards.at(1).weight, 0.25);
   EXPECT_NE(error("ppo..clip=1").find("empty key"), std::string::npos);
   EXPECT_NE(error("ppo.clip=[1").find("not valid YAML"), std::string::npos);
 }
