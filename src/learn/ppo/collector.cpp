@@ -131,12 +131,10 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
     Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> xr = x;
     const torch::Tensor input = torch::from_blob(xr.data(), {b, in}, torch::kFloat32);
     auto [mean_t, log_std_t] = policy->forward(input);
-    const torch::Tensor value_t = value->forward(input).contiguous();
     mean_t = mean_t.contiguous();
     log_std_t = log_std_t.contiguous();
     const float* mean_p = mean_t.data_ptr<float>();
     const float* log_std_p = log_std_t.data_ptr<float>();
-    const float* value_p = value_t.data_ptr<float>();
 
     const std::size_t base = r.env_reward.size();
     for (int k = 0; k < b; ++k) {
@@ -153,7 +151,7 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
         r.mean.push_back(mean_p[k * na + j]);
         r.log_std.push_back(log_std_p[k * na + j]);
       }
-      r.value.push_back(value_p[k]);
+      r.value.push_back(0.0f);  // all values at once after the collection (below)
       for (int c = 0; c < in; ++c) r.raw_input.push_back(raw(k, c));
       r.input.insert(r.input.end(), xr.row(k).data(), xr.row(k).data() + in);
       r.env_steps[static_cast<std::size_t>(e)].push_back(static_cast<int>(base) + k);
@@ -218,9 +216,15 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
     if (interrupted_ && interrupted_()) throw Interrupted("stopped during collection, " + std::to_string(r.size()) + " samples in");
   }
 
+  // Every sample's value in one batched pass (the network does not change during a collection):
+  // one large product instead of a small one per step, which cost as much again as the policy's.
+  Stopwatch bootstrapping;
+  if (r.size() > 0) {
+    const torch::Tensor v = value->forward(torch::from_blob(r.input.data(), {r.size(), in}, torch::kFloat32)).contiguous();
+    r.value.assign(v.data_ptr<float>(), v.data_ptr<float>() + r.size());
+  }
   // Values that bootstrap: the state after each step is the next sample of the same environment,
   // except after an ended episode (its last observation) and after the last step (the current one).
-  Stopwatch bootstrapping;
   for (int e = 0; e < n_env; ++e) {
     const auto& idx = r.env_steps[static_cast<std::size_t>(e)];
     for (std::size_t j = 0; j + 1 < idx.size(); ++j)
