@@ -8,6 +8,7 @@
 #include <new>
 
 #include "app/commands.hpp"
+#include "control/navigation.hpp"
 #include "core/blas_kernel.hpp"
 #include "core/error.hpp"
 #include "learn/trainer/ranks.hpp"
@@ -56,6 +57,7 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   mimic::pin_blas_kernel(argv);  // the same numbers on every machine (may start the program again)
+  mimic::register_control_envs();  // the environments above the environment layer (the navigation task)
   try {
     mimic::ranks::init(argc, argv);  // under mpirun: one rank of a run (learn/trainer/ranks.hpp)
   } catch (const mimic::Error& e) {

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "control/navigation.hpp"
 #include "control/skill_impl.hpp"
 #include "core/config_override.hpp"
 #include "core/error.hpp"
@@ -127,6 +128,7 @@ std::shared_ptr<const Skill> Skill::load(const std::filesystem::path& model_dir,
 
 std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, std::string_view networks_bytes, const std::filesystem::path& networks,
                                         const std::string& name, const std::vector<std::string>& env_settings) {
+  register_control_envs();  // a skill may act in an environment of this layer's (the navigation task)
   const std::filesystem::path config = model_dir / "config.yaml";
   for (const std::string& setting : env_settings)
     if (setting.rfind("env.", 0) != 0) throw Error("setting '" + setting + "': a skill's environment takes env keys only (env.KEY=VALUE)");

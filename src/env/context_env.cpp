@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "env/character_env.hpp"
+#include "env/navigation_env.hpp"
 
 namespace mimic {
 
@@ -81,6 +82,7 @@ void ContextEnv::hold_context(int c) {
 }
 
 CharacterEnv* character_of(Env& env) {
+  if (auto* navigation = dynamic_cast<NavigationEnv*>(&env)) return &navigation->character();
   auto* contexts = dynamic_cast<ContextEnv*>(&env);
   return dynamic_cast<CharacterEnv*>(contexts ? &contexts->inner() : &env);
 }

@@ -22,7 +22,8 @@ namespace mimic {
 std::optional<ObservationSlice> context_slice(const std::vector<ObservationSlice>& layout);
 
 // The simulated character an environment drives: a behaviour-context env's through the env it
-// wraps. Null when there is none (the walker, the arm).
+// wraps, a navigation env's (env/navigation_env.hpp) its skill's. Null when there is none (the
+// walker, the arm).
 CharacterEnv* character_of(Env& env);
 
 class ContextEnv : public Env {

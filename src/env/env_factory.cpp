@@ -1,5 +1,8 @@
 #include "env/env_factory.hpp"
 
+#include <mutex>
+#include <utility>
+
 #include "core/config_section.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -39,7 +42,21 @@ EnvFactory reacher(ConfigSection& s) {
 // A data file the config names: beside the config when it is there (a run or model directory
 // holds its own clips), else as given (absolute, or relative to the working directory), else under
 // the shared data directory.
-std::filesystem::path data_path(const std::string& given, const char* key, const YamlReader& reader) {
+std::filesystem::path data_path(const std::string& given, const char* key, const YamlReader& reader) { return env_data_path(given, key, reader); }
+
+// Makers registered by higher layers (register_env), by name, in the order registered.
+std::vector<std::pair<std::string, EnvMaker>>& registered() {
+  static std::vector<std::pair<std::string, EnvMaker>> makers;
+  return makers;
+}
+std::mutex& registry_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+}  // namespace
+
+std::filesystem::path env_data_path(const std::string& given, const char* key, const YamlReader& reader) {
   const std::filesystem::path p(given), config_dir = std::filesystem::path(reader.source()).parent_path();
   if (p.is_relative() && !config_dir.empty() && std::filesystem::exists(config_dir / p)) return config_dir / p;
   if (std::filesystem::exists(p)) return p;
@@ -48,6 +65,8 @@ std::filesystem::path data_path(const std::string& given, const char* key, const
   throw Error(reader.source() + ": 'env." + key + "': " + given + " not found (looked beside the config, in the working directory and under " +
               (shared.empty() ? std::string("the shared data directory, which is absent: set MIMIC_DATA") : shared.string()) + ")");
 }
+
+namespace {
 
 // A DeepMimic character (with its PD file when one lies beside it) and a clip for it.
 std::shared_ptr<const CharacterModel> load_character(const std::filesystem::path& ch_path) {
@@ -226,16 +245,40 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
 
 }  // namespace
 
-std::string env_names() { return "imitation, tracking, planar_walker, reacher"; }
+std::string env_names() {
+  std::string names = "imitation, tracking, planar_walker, reacher";
+  const std::lock_guard lock(registry_mutex());
+  for (const auto& [name, make] : registered()) names += ", " + name;
+  return names;
+}
+
+void register_env(const std::string& name, EnvMaker make) {
+  const std::lock_guard lock(registry_mutex());
+  for (const auto& [known, maker] : registered())
+    if (known == name) return;
+  registered().emplace_back(name, std::move(make));
+}
 
 EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   ConfigSection s(reader, env, "env");
   // humanoid_forward: the imitation environment's name in models saved before it had one.
-  const std::string name = s.choice("name", "", {"imitation", "tracking", "planar_walker", "reacher", "humanoid_forward"});
+  std::vector<std::string> names{"imitation", "tracking", "planar_walker", "reacher", "humanoid_forward"};
+  EnvMaker other;
+  {
+    const std::lock_guard lock(registry_mutex());
+    for (const auto& [known, maker] : registered()) names.push_back(known);
+  }
+  const std::string name = s.choice("name", "", names);
   if (name.empty()) reader.fail(env, "'env': missing 'name' (one of " + env_names() + ")");
+  {
+    const std::lock_guard lock(registry_mutex());
+    for (const auto& [known, maker] : registered())
+      if (known == name) other = maker;
+  }
   EnvFactory f;
   try {
-    f = name == "planar_walker" ? planar_walker(s)
+    f = other                   ? other(s, reader)
+        : name == "planar_walker" ? planar_walker(s)
         : name == "reacher"     ? reacher(s)
         : name == "tracking"    ? tracking(s, reader)
                                 : imitation(s, reader);

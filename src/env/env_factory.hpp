@@ -1,10 +1,12 @@
 #pragma once
 // Environments by name from a config's `env` section, so that training, evaluation and
 // benchmarks build the same environment from the same YAML. Unknown names and keys are errors.
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
 
+#include "core/config_section.hpp"
 #include "core/yaml_reader.hpp"
 #include "env/env.hpp"
 
@@ -19,5 +21,16 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader);
 
 // The names make_env_factory knows, for messages and help.
 std::string env_names();
+
+// An environment a higher layer provides (the navigation task over a frozen skill needs the
+// runtime, in control/): make_env_factory hands it the env section (its keys to read and check;
+// the caller finishes the section) and the reader. A name already known keeps its first maker.
+using EnvMaker = std::function<EnvFactory(ConfigSection& section, const YamlReader& reader)>;
+void register_env(const std::string& name, EnvMaker make);
+
+// A data file named by key `key` of the env section: beside the config when it is there (a run
+// or model directory holds its own files), else as given, else under the shared data directory.
+// Throws Error naming the key and where it looked.
+std::filesystem::path env_data_path(const std::string& given, const char* key, const YamlReader& reader);
 
 }  // namespace mimic

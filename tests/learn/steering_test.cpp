@@ -9,13 +9,10 @@
 
 #include "control/play_session.hpp"
 #include "core/error.hpp"
-#include "core/file_io.hpp"
 #include "env/imitation_env.hpp"
-#include "learn/networks/runtime_export.hpp"
-#include "learn/trainer/trainer.hpp"
 #include "mimic/runtime.hpp"
+#include "steered_skill.hpp"
 #include "../humanoid_data.hpp"
-#include "../test_data.hpp"
 
 using namespace mimic;
 
@@ -80,26 +77,11 @@ TEST(SteeringEval, CountsEveryTrialAsAFallOrAReadingAndNamesItsErrors) {
   EXPECT_THROW((void)measure_steering(*env, limp, 1, o), Error);
 }
 
-namespace {
-
-// An untrained skill on the humanoid, with or without the heading goal, as a model directory.
-std::shared_ptr<const Skill> humanoid_skill(bool goal, const std::string& name) {
-  const std::string text = std::string("seed: 2\niterations: 1\nenv: {name: imitation, init: fixed") + (goal ? ", goal: heading" : "") +
-                           "}\ncollect: {envs: 1, threads: 1, samples: 64}\npolicy: {hidden: [8], activation: relu}\n"
-                           "value: {hidden: [8], activation: relu}\nrewards: [{source: env}]\n";
-  Trainer trainer(parse_train_config(text, name + ".yaml"));
-  const auto dir = test::temp_dir("steering_" + name);
-  write_file_atomic(dir / "config.yaml", text);
-  trainer.write_runtime_networks(dir / kRuntimeFileName);
-  return Skill::load(dir, name);
-}
-
-}  // namespace
 
 TEST(SteeringRuntime, ACommandedHeadingIsWhatASteerableSkillObserves) {
   MIMIC_NEED_HUMANOID();
-  const auto steered = humanoid_skill(true, "steered");
-  const auto plain = humanoid_skill(false, "plain");
+  const auto steered = test::steered_skill(true, "steered");
+  const auto plain = test::steered_skill(false, "plain");
   Controller c({steered, plain});
   EXPECT_TRUE(c.steerable("steered"));
   EXPECT_FALSE(c.steerable("plain"));
@@ -136,7 +118,7 @@ TEST(SteeringRuntime, ACommandedHeadingIsWhatASteerableSkillObserves) {
 
 TEST(SteeringRuntime, APlaySessionSteersFromTheCharactersFacingThenFromItsLastCommand) {
   MIMIC_NEED_HUMANOID();
-  const auto steered = humanoid_skill(true, "steered");
+  const auto steered = test::steered_skill(true, "steered");
   PlaySession session({steered}, PlayOptions{});
   const double facing = session.controller().facing();
   ASSERT_TRUE(session.steer(30.0));
@@ -146,7 +128,7 @@ TEST(SteeringRuntime, APlaySessionSteersFromTheCharactersFacingThenFromItsLastCo
   EXPECT_NEAR(session.controller().heading(), std::remainder(facing - deg_to_rad(60), 2 * kPi), 1e-12);
   EXPECT_EQ(session.events().back().event, "steer");
   // Where no skill takes a heading, nothing is commanded (the window turns its camera instead).
-  PlaySession plain({humanoid_skill(false, "plain")}, PlayOptions{});
+  PlaySession plain({test::steered_skill(false, "plain")}, PlayOptions{});
   EXPECT_FALSE(plain.steer(30.0));
   EXPECT_TRUE(std::isnan(plain.controller().heading()));
 }

@@ -1,0 +1,99 @@
+#include "env/navigation_env.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "env/imitation_env.hpp"
+
+namespace mimic {
+
+NavigationEnv::NavigationEnv(std::unique_ptr<CharacterEnv> skill_env, LowLevelPolicy policy, int history, const NavigationConfig& cfg)
+    : inner_(std::move(skill_env)), policy_(std::move(policy)), history_(history), cfg_(cfg) {
+  if (!inner_ || !policy_) throw Error("navigation: a skill's environment and policy are needed");
+  if (!has_heading_goal(*inner_))
+    throw Error("navigation: the low-level skill must take a heading (trained with env.goal: heading, `mimic imitate --task heading`)");
+  if (history_ < 1) throw Error("navigation: the skill's history must be at least one frame");
+  if (cfg_.decision_steps < 1 || !(cfg_.max_turn > 0 && cfg_.max_turn <= 180) || !(cfg_.view_ahead > 0) || !(cfg_.view_width > 0) ||
+      !(cfg_.view_spacing > 0) || !(cfg_.progress_weight >= 0) || !(cfg_.max_seconds > 0))
+    throw Error("navigation: decision_steps >= 1, max_turn in (0, 180], positive view sizes and max_seconds, progress_weight >= 0");
+  grid_ahead_ = static_cast<int>(std::floor(cfg_.view_ahead / cfg_.view_spacing + 1e-9)) + 1;
+  grid_across_ = static_cast<int>(std::floor(cfg_.view_width / cfg_.view_spacing + 1e-9)) + 1;
+  if (grid_ahead_ * grid_across_ > 100'000) throw Error("navigation: the view's grid has more than 100,000 cells; give a larger view_spacing");
+  for (const ObservationSlice& part : inner_->observation_layout())
+    if (part.name == "goal") goal_offset_ = part.offset;
+}
+
+std::vector<ObservationSlice> NavigationEnv::observation_layout() const {
+  const int n = grid_ahead_ * grid_across_;
+  return {{"height_map", 0, n}, {"heading", n, 2}, {"lateral", n + 2, 1}};
+}
+
+double NavigationEnv::command_of(double action) const {
+  const double a = std::isfinite(action) ? std::clamp(action, -1.0, 1.0) : 0.0;
+  return a * cfg_.max_turn * kPi / 180.0;
+}
+
+Eigen::Vector2d NavigationEnv::view_point(const Vec3& root, double yaw, int i, int j) const {
+  const double ahead = i * cfg_.view_spacing, across = -0.5 * cfg_.view_width + j * cfg_.view_spacing;
+  return {root.x() + std::cos(yaw) * ahead - std::sin(yaw) * across, root.y() + std::sin(yaw) * ahead + std::cos(yaw) * across};
+}
+
+Eigen::VectorXd NavigationEnv::observe() const {
+  Eigen::VectorXd obs(observation_size());
+  const Vec3 root = inner_->world().root_position();
+  const double yaw = heading_angle(inner_->world().pose().rot[0]);
+  const Terrain& terrain = inner_->terrain();
+  const double ground = terrain.height(root.x(), root.y());
+  for (int i = 0; i < grid_ahead_; ++i)
+    for (int j = 0; j < grid_across_; ++j) {
+      const Eigen::Vector2d p = view_point(root, yaw, i, j);
+      obs[i * grid_across_ + j] = terrain.height(p.x(), p.y()) - ground;
+    }
+  const int n = grid_ahead_ * grid_across_;
+  obs[n] = std::cos(yaw), obs[n + 1] = std::sin(yaw);
+  obs[n + 2] = root.y() / (0.5 * terrain.spec().width);
+  return obs;
+}
+
+Eigen::VectorXd NavigationEnv::stacked() const {
+  const auto frame = frames_.front().size();
+  Eigen::VectorXd x(frame * static_cast<Eigen::Index>(frames_.size()));
+  for (std::size_t f = 0; f < frames_.size(); ++f) x.segment(static_cast<Eigen::Index>(f) * frame, frame) = frames_[f];
+  return x;
+}
+
+// The skill's target, and its newest frame made to show it (it was observed under the old one).
+void NavigationEnv::command(double yaw) {
+  set_goal_heading(*inner_, yaw);
+  if (goal_offset_ >= 0) frames_.back().segment(goal_offset_, 2) = goal_observation(*inner_);
+}
+
+Eigen::VectorXd NavigationEnv::reset(std::mt19937_64& rng) {
+  const Eigen::VectorXd first = inner_->reset(rng);
+  frames_.assign(static_cast<std::size_t>(history_), first);
+  elapsed_ = 0.0;
+  command(0.0);  // along the course until the first decision
+  return observe();
+}
+
+StepResult NavigationEnv::step(const Eigen::VectorXd& action) {
+  if (action.size() != 1) throw Error("navigation: one action value (the heading command) expected, got " + std::to_string(action.size()));
+  command(command_of(action[0]));
+  const double x0 = inner_->world().root_position().x();
+  const double dt = 1.0 / inner_->config().sim.control_hz;
+  StepResult out;
+  for (int k = 0; k < cfg_.decision_steps && !out.done(); ++k) {
+    StepResult r = inner_->step(policy_(stacked()));
+    frames_.pop_front();
+    frames_.push_back(std::move(r.observation));
+    elapsed_ += dt;
+    if (r.done()) out.termination = is_failure(r.termination) ? Termination::Fall : Termination::TimeLimit;
+    else if (elapsed_ >= cfg_.max_seconds - 1e-9) out.termination = Termination::TimeLimit;
+  }
+  out.reward_terms.emplace_back("progress", cfg_.progress_weight * (inner_->world().root_position().x() - x0));
+  out.observation = observe();
+  return out;
+}
+
+}  // namespace mimic

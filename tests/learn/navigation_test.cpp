@@ -1,0 +1,148 @@
+// Seed 000's high-level controller task (env/navigation_env.hpp, control/navigation.hpp): the
+// view pinned on stairs of known heights and on a hand-rotated grid point, the action as the
+// skill's heading target, progress as the reward, a fall as the end; and the environment by name
+// over a runtime skill, with its errors.
+#include "env/navigation_env.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "control/navigation.hpp"
+#include "core/error.hpp"
+#include "env/context_env.hpp"
+#include "env/env_factory.hpp"
+#include "env/imitation_env.hpp"
+#include "steered_skill.hpp"
+#include "../humanoid_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+// The humanoid standing at the origin facing +x with a heading goal, on `terrain`.
+std::unique_ptr<CharacterEnv> steered_env(const CharacterModel& ch, const TerrainSpec& terrain) {
+  ImitationEnvConfig cfg;
+  cfg.init = ImitationEnvConfig::Init::FixedPose;
+  cfg.goal = ImitationEnvConfig::Goal::Heading;
+  cfg.goal_period = 1e6;
+  cfg.env.terrain = terrain;
+  cfg.env.max_seconds = 60.0;
+  return make_imitation_env(ch, nullptr, cfg);
+}
+
+}  // namespace
+
+TEST(NavigationEnv, SeesTheStairsAheadAndCommandsTheSkillsHeading) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  TerrainSpec stairs;
+  stairs.kind = TerrainKind::Stairs;  // from x = 2 m, steps 0.15 m high and 0.3 m deep
+  NavigationConfig cfg;
+  cfg.view_ahead = 3.0, cfg.view_width = 2.0, cfg.view_spacing = 0.1, cfg.decision_steps = 5, cfg.max_turn = 60.0;
+  std::vector<double> seen_goals;
+  auto inner = steered_env(ch, stairs);
+  CharacterEnv* character = inner.get();
+  NavigationEnv env(std::move(inner), [&](const Eigen::VectorXd& x) {
+    seen_goals.push_back(std::atan2(x[x.size() - 1], x[x.size() - 2]));  // the goal closes the skill's frame
+    return Eigen::VectorXd::Zero(character->action_size());
+  }, 1, cfg);
+  const auto layout = env.observation_layout();
+  ASSERT_EQ(layout.size(), 3u);
+  EXPECT_EQ(layout[0].size, 31 * 21);
+  EXPECT_EQ(env.observation_size(), 31 * 21 + 3);
+  EXPECT_EQ(env.action_size(), 1);
+  std::mt19937_64 rng(1);
+  const Eigen::VectorXd obs = env.reset(rng);
+  const Vec3 root = character->world().root_position();
+  ASSERT_NEAR(root.x(), 0.0, 0.05);
+  // Rows 2.1, 2.4 and 2.7 m ahead lie on steps 1, 2 and 3, across the whole view; row 1 m on the flat.
+  for (int j = 0; j < 21; ++j) {
+    EXPECT_NEAR(obs[10 * 21 + j], 0.0, 1e-9) << j;
+    EXPECT_NEAR(obs[21 * 21 + j], 0.15, 1e-9) << j;
+    EXPECT_NEAR(obs[24 * 21 + j], 0.30, 1e-9) << j;
+    EXPECT_NEAR(obs[27 * 21 + j], 0.45, 1e-9) << j;
+  }
+  const int n = 31 * 21;
+  EXPECT_NEAR(obs[n], 1.0, 1e-3);      // facing +x
+  EXPECT_NEAR(obs[n + 1], 0.0, 1e-3);
+  EXPECT_NEAR(obs[n + 2], root.y() / 10.0, 1e-12);  // over the course's half width (20 m wide)
+  // A grid point by hand: 1 m ahead and 4 m to the right of (1, 2) facing +y is (5, 3).
+  NavigationConfig wide;
+  auto other = steered_env(ch, TerrainSpec{});
+  const NavigationEnv view(std::move(other), [](const Eigen::VectorXd& x) { return Eigen::VectorXd::Zero(x.size()); }, 1, wide);
+  const Eigen::Vector2d p = view.view_point(Vec3(1, 2, 0), kPi / 2, 2, 0);
+  EXPECT_NEAR(p.x(), 5.0, 1e-12);
+  EXPECT_NEAR(p.y(), 3.0, 1e-12);
+  // An action of 0.5 commands 30 degrees from +x: the skill's target from the decision's first step.
+  const double x0 = character->world().root_position().x();
+  seen_goals.clear();
+  const StepResult r = env.step(Eigen::VectorXd::Constant(1, 0.5));
+  EXPECT_NEAR(goal_heading(*character), kPi / 6, 1e-12);
+  ASSERT_EQ(seen_goals.size(), 5u);  // five control steps a decision
+  EXPECT_NEAR(seen_goals.front(), kPi / 6, 0.05);  // (relative to a facing still near +x)
+  ASSERT_EQ(r.reward_terms.size(), 1u);
+  EXPECT_NEAR(r.reward(), character->world().root_position().x() - x0, 1e-12);  // metres along +x
+  EXPECT_NEAR(env.command_of(2.0), kPi / 3, 1e-12);  // clipped to max_turn
+  EXPECT_NEAR(env.command_of(std::nan("")), 0.0, 1e-12);
+  EXPECT_THROW((void)env.step(Eigen::VectorXd::Zero(2)), Error);
+}
+
+TEST(NavigationEnv, AFallOfTheSkillEndsTheEpisodeAsAFailure) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  auto inner = steered_env(ch, TerrainSpec{});
+  const int actions = inner->action_size();
+  NavigationConfig cfg;
+  NavigationEnv env(std::move(inner), [actions](const Eigen::VectorXd&) { return Eigen::VectorXd::Constant(actions, 1.0); }, 1, cfg);
+  std::mt19937_64 rng(3);
+  env.reset(rng);
+  StepResult r;
+  int decisions = 0;
+  while (!r.done() && decisions < 100) r = env.step(Eigen::VectorXd::Zero(1)), ++decisions;
+  EXPECT_EQ(r.termination, Termination::Fall);  // limp, it folds long before the 30 s
+  EXPECT_LT(decisions, 100);
+  // A skill's environment without a heading goal cannot be steered.
+  ImitationEnvConfig plain;
+  plain.init = ImitationEnvConfig::Init::FixedPose;
+  EXPECT_THROW(NavigationEnv(make_imitation_env(ch, nullptr, plain), [](const Eigen::VectorXd& x) { return x; }, 1, cfg), Error);
+}
+
+namespace {
+
+std::string factory_error(const std::string& yaml) {
+  const YamlReader r("navigation.yaml");
+  try {
+    (void)make_env_factory(r.parse(yaml, ""), r);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(NavigationEnv, IsBuiltByNameOverARuntimeSkillOnTheCourseGiven) {
+  MIMIC_NEED_HUMANOID();
+  register_control_envs();
+  const auto steered = test::steered_skill_dir(true, "navigation_low");
+  const auto plain = test::steered_skill_dir(false, "navigation_plain");
+  const YamlReader r("navigation.yaml");
+  const EnvFactory f = make_env_factory(
+      r.parse("{name: navigation, skill: " + steered.string() + ", terrain: {kind: walls}, decision_steps: 3, view_spacing: 1.0}", ""), r);
+  const std::unique_ptr<Env> env = f();
+  EXPECT_EQ(env->action_size(), 1);
+  EXPECT_EQ(env->observation_size(), 16 * 9 + 3);
+  CharacterEnv* character = character_of(*env);
+  ASSERT_NE(character, nullptr);
+  EXPECT_EQ(character->terrain().spec().kind, TerrainKind::Walls);
+  std::mt19937_64 rng(2);
+  env->reset(rng);
+  const StepResult step = env->step(Eigen::VectorXd::Zero(1));
+  EXPECT_TRUE(step.observation.allFinite());
+  EXPECT_NE(env_names().find("navigation"), std::string::npos);
+  EXPECT_NE(factory_error("{name: navigation}").find("'skill'"), std::string::npos);
+  EXPECT_NE(factory_error("{name: navigation, skill: " + plain.string() + "}").find("must take a heading"), std::string::npos);
+  EXPECT_NE(factory_error("{name: navigation, skill: " + steered.string() + ", decision_step: 3}").find("decision_step"), std::string::npos);
+  EXPECT_NE(factory_error("{name: navigation, skill: /nonexistent/skill}").find("/nonexistent/skill"), std::string::npos);
+}
