@@ -234,6 +234,33 @@ TEST(ImitationEnv, ASteeringGoalTurnsByAtMostGoalTurnFromWhereTheCharacterFaces)
   EXPECT_THROW(make_imitation_env(ch, nullptr, cfg), Error);
 }
 
+TEST(ImitationEnv, ARedrawnWallsCourseIsNewAtEveryStart) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  ImitationEnvConfig cfg;
+  cfg.init = Init::FixedPose;
+  cfg.env.terrain.kind = TerrainKind::Walls;
+  cfg.env.terrain.redraw = true;
+  auto env = make_imitation_env(ch, nullptr, cfg);
+  const double x = cfg.env.terrain.start_zone + 0.1;  // inside the first wall
+  // Which of 40 places across the first wall are open.
+  const auto open = [&] {
+    std::vector<bool> out;
+    for (int i = 0; i < 40; ++i) out.push_back(env->terrain().height(x, -9.75 + 0.5 * i) == 0.0);
+    return out;
+  };
+  std::mt19937_64 rng(5);
+  env->reset(rng);
+  const auto first = open();
+  int changed = 0;
+  for (int start = 0; start < 3; ++start) {
+    env->reset(rng);
+    if (open() != first) ++changed;
+  }
+  EXPECT_GE(changed, 2);
+  EXPECT_EQ(std::count(first.begin(), first.end(), true), 4);  // a 2 m opening: 4 places 0.5 m apart
+}
+
 TEST(ImitationEnv, BuildsAProprioceptiveEnvWithoutAReference) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

@@ -158,6 +158,47 @@ TEST(Terrain, EachWallBlocksTheCourseButForOneOpeningDrawnFromTheSeed) {
   EXPECT_EQ(walls.height(1.0, 0.0), 0.0);  // the start zone
 }
 
+TEST(Terrain, AWallsCourseRedrawnMovesItsOpeningsInTheModelToo) {
+  const TerrainSpec s = spec_of(TerrainKind::Walls);
+  Terrain walls(s);
+  const auto w = world_on(walls);
+  const auto wall_x = [&](int k) { return s.start_zone + k * s.wall_spacing + s.wall_thickness / 2; };
+  // The middle of wall k's opening, from height() at 5 cm steps across the course.
+  const auto opening = [&](int k) {
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i < static_cast<int>(std::lround(s.width / 0.05)); ++i) {
+      const double y = -s.width / 2 + 0.025 + 0.05 * i;
+      if (walls.height(wall_x(k), y) == 0.0) sum += y, ++n;
+    }
+    return n ? sum / n : std::nan("");
+  };
+  std::vector<double> before;
+  for (int k = 0; k < s.wall_count; ++k) before.push_back(opening(k));
+  walls.redraw(99, w->model());
+  mj_forward(w->model(), w->data());
+  int moved = 0;
+  for (int k = 0; k < s.wall_count; ++k) {
+    if (std::abs(opening(k) - before[static_cast<std::size_t>(k)]) > 0.5) ++moved;
+    for (int i = 0; i < static_cast<int>(std::lround(s.width / 0.05)); ++i) {  // MuJoCo's walls are where height() says
+      const double y = -s.width / 2 + 0.025 + 0.05 * i;
+      ASSERT_NEAR(ray_height(*w, wall_x(k), y), walls.height(wall_x(k), y), 1e-6) << "wall " << k << " at y " << y;
+    }
+  }
+  EXPECT_GE(moved, 3);  // of 5: a new course
+  // The course of seed 99 built fresh is the one redrawn.
+  TerrainSpec again = s;
+  again.seed = 99;
+  const Terrain fresh(again);
+  for (int k = 0; k < s.wall_count; ++k) EXPECT_EQ(fresh.height(wall_x(k), opening(k)), 0.0);
+  // Only walls are redrawn.
+  Terrain stairs(spec_of(TerrainKind::Stairs));
+  EXPECT_THROW(stairs.redraw(1, w->model()), Error);
+  TerrainSpec redrawn_stairs = spec_of(TerrainKind::Stairs);
+  redrawn_stairs.redraw = true;
+  EXPECT_THROW(Terrain{redrawn_stairs}, Error);
+}
+
 TEST(Terrain, HeightFieldIsBumpyAndDeterministicForASeed) {
   const TerrainSpec s = spec_of(TerrainKind::HeightField);
   const Terrain a(s), b(s);

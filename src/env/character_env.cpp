@@ -219,6 +219,7 @@ void CharacterEnv::choose_start_group(int g) {
 }
 
 Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
+  if (cfg_.terrain.redraw) terrain_.redraw(rng(), world_.model());  // a new course (walls) every episode
   InitState s;
   if (init_sampler_) {
     s = init_sampler_(rng);

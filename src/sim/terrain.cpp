@@ -62,12 +62,15 @@ double value_noise(std::uint64_t seed, double u, double v) {
 
 std::string num(double v) { return fmt::format("{:.9g}", v); }
 
+constexpr double kWallMargin = 0.05;  // m: the least of a wall on each side of its opening
+
 }  // namespace
 
 Terrain::Terrain(const TerrainSpec& spec) : spec_(spec) {
   const TerrainSpec& s = spec_;
   require(s.start_zone >= 0 && s.behind > 0 && s.ahead > s.start_zone && s.width > 0,
           "need start_zone >= 0, behind > 0, ahead > start_zone and width > 0");
+  require(!s.redraw || s.kind == TerrainKind::Walls, std::string("redraw: only a walls course is redrawn, not '") + to_string(s.kind) + "'");
   switch (s.kind) {
     case TerrainKind::Flat: break;
     case TerrainKind::Slope: build_slope(); break;
@@ -148,12 +151,30 @@ void Terrain::build_walls() {
   require(s.opening_width < s.width, "walls: the opening must be narrower than the course's width");
   require(s.wall_spacing > s.wall_thickness, "walls: wall_spacing must exceed wall_thickness");
   require(s.start_zone + (s.wall_count - 1) * s.wall_spacing + s.wall_thickness <= s.ahead, "walls: the walls run past 'ahead'");
+  require(s.opening_width + 2 * kWallMargin < s.width, "walls: the opening must leave 5 cm of wall on each side");
   const double y0 = -s.width / 2, y1 = s.width / 2, half = s.opening_width / 2;
+  // Two parts a wall, each at least kWallMargin wide, so that every seed's course has the same boxes.
   for (int k = 0; k < s.wall_count; ++k) {
     const double x = s.start_zone + k * s.wall_spacing;
-    const double centre = y0 + half + hash01(s.seed, k, 1) * (s.width - s.opening_width);
-    if (centre - half > y0) boxes_.push_back(Box{x, x + s.wall_thickness, y0, centre - half, s.wall_height});
-    if (centre + half < y1) boxes_.push_back(Box{x, x + s.wall_thickness, centre + half, y1, s.wall_height});
+    const double centre = y0 + kWallMargin + half + hash01(s.seed, k, 1) * (s.width - s.opening_width - 2 * kWallMargin);
+    boxes_.push_back(Box{x, x + s.wall_thickness, y0, centre - half, s.wall_height});
+    boxes_.push_back(Box{x, x + s.wall_thickness, centre + half, y1, s.wall_height});
+  }
+}
+
+void Terrain::redraw(std::uint64_t seed, mjModel_* m) {
+  if (spec_.kind != TerrainKind::Walls) throw Error(std::string("terrain: only walls are redrawn, not '") + to_string(spec_.kind) + "'");
+  spec_.seed = seed;
+  boxes_.clear();
+  build_walls();
+  for (std::size_t k = 0; k < boxes_.size(); ++k) {
+    const int g = mj_name2id(m, mjOBJ_GEOM, fmt::format("terrain_box{}", k).c_str());
+    if (g < 0) throw Error("terrain: the model has no wall geom terrain_box" + std::to_string(k) + " (build it with Terrain::add_to)");
+    const Box& b = boxes_[k];
+    const double size[3] = {(b.x1 - b.x0) / 2, (b.y1 - b.y0) / 2, (b.top - base_) / 2};
+    const double pos[3] = {(b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2, (b.top + base_) / 2};
+    for (int i = 0; i < 3; ++i) m->geom_size[3 * g + i] = size[i], m->geom_pos[3 * g + i] = pos[i];
+    m->geom_rbound[g] = std::sqrt(size[0] * size[0] + size[1] * size[1] + size[2] * size[2]);  // the broad phase's sphere
   }
 }
 

@@ -53,6 +53,7 @@ struct TerrainSpec {
   int wall_count = 5;
   double wall_spacing = 7.0, wall_height = 1.0, wall_thickness = 0.3, opening_width = 2.0;  // (m)
   std::uint64_t seed = 0;
+  bool redraw = false;  // walls only: a new course (the openings' places) at every start (Terrain::redraw)
 };
 
 class Terrain {
@@ -69,6 +70,11 @@ class Terrain {
   // Writes the height-field samples into a model compiled from add_to's options (a no-op for
   // kinds without one); call it before stepping. Throws Error if the model has no such field.
   void install(mjModel_* m) const;
+  // Walls: the course of another seed, in this terrain and in a model built from add_to's options
+  // (its wall geoms moved and resized in place; positions are recomputed at the next mj_forward).
+  // Every seed gives each wall two parts, so the model's geoms stay the same ones. Throws Error for
+  // another kind or a model without the walls.
+  void redraw(std::uint64_t seed, mjModel_* m);
 
  private:
   struct Box {
