@@ -261,6 +261,43 @@ TEST(ImitationEnv, ARedrawnWallsCourseIsNewAtEveryStart) {
   EXPECT_EQ(std::count(first.begin(), first.end(), true), 4);  // a 2 m opening: 4 places 0.5 m apart
 }
 
+TEST(ImitationEnv, FallenStartsLieWhereTheyLandedAndTheirContactsEndNothing) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  ImitationEnvConfig cfg;
+  cfg.fallen_starts = 1.0;
+  auto env = make_imitation_env(ch, walk, cfg);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
+  std::mt19937_64 rng(3);
+  double lowest_forward = 1, highest_forward = -1;
+  for (int i = 0; i < 12; ++i) {
+    env->reset(rng);
+    ASSERT_TRUE(fallen_start(*env));
+    EXPECT_LT(env->world().root_position().z(), 0.5 * ch.rest_root_height()) << i;  // on the ground
+    EXPECT_LT(env->world().velocity().root_lin.norm(), 0.5) << i;                  // and settled
+    const double forward = (env->world().pose().rot[0] * Vec3::UnitX()).z();        // < 0: face down
+    lowest_forward = std::min(lowest_forward, forward), highest_forward = std::max(highest_forward, forward);
+    // Lying, its root and chest touch the ground: a fall for an ordinary start, not for this one.
+    for (int t = 0; t < 5; ++t) EXPECT_NE(env->step(zero).termination, Termination::Fall) << i;
+  }
+  EXPECT_LT(lowest_forward, -0.3);  // face down and face up both
+  EXPECT_GT(highest_forward, 0.3);
+  // A start given as a state afterwards is an ordinary one: lying, its contacts end it.
+  env->reset(env->state_on_clip(*walk, 0.0));
+  EXPECT_FALSE(fallen_start(*env));
+  // Off (the default), the starts are the ones drawn without the key.
+  ImitationEnvConfig plain;
+  auto a = make_imitation_env(ch, walk, plain);
+  plain.fallen_starts = 0.0;
+  auto b = make_imitation_env(ch, walk, plain);
+  std::mt19937_64 r1(9), r2(9);
+  EXPECT_TRUE(a->reset(r1).isApprox(b->reset(r2)));
+  EXPECT_FALSE(fallen_start(*a));
+  cfg.fallen_starts = 1.5;
+  EXPECT_THROW(make_imitation_env(ch, walk, cfg), Error);
+}
+
 TEST(ImitationEnv, BuildsAProprioceptiveEnvWithoutAReference) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

@@ -237,6 +237,7 @@ Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
 }
 
 Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
+  ++starts_;
   time_ = init.time;
   elapsed_ = 0.0;
   clip_left_ = init.clip_left;

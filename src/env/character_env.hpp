@@ -169,6 +169,7 @@ class CharacterEnv : public Env {
   const std::shared_ptr<const Clip>& shared_reference() const { return reference_; }
   double time() const { return time_; }  // on the reference clip: init time + elapsed
   double elapsed() const { return elapsed_; }
+  long long starts() const { return starts_; }  // episodes begun (reset(InitState) calls), for tasks that mark one
   const CharacterEnvConfig& config() const { return cfg_; }
   const Terrain& terrain() const { return terrain_; }
   // Does a body whose contact counts as a fall touch the ground now (whether or not that ends
@@ -212,6 +213,7 @@ class CharacterEnv : public Env {
   std::vector<ExtraPart> extra_;
   int extra_size_ = 0;
   InitSampler init_sampler_;
+  long long starts_ = 0;
   int start_groups_ = 0, start_group_ = -1;
   Pusher pusher_;
   std::unique_ptr<ProjectileLauncher> launcher_;

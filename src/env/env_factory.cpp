@@ -214,6 +214,7 @@ EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
   c.lateral_weight = s.number("lateral_weight", c.lateral_weight, 0, 1e6);
   c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
+  c.fallen_starts = s.number("fallen_starts", c.fallen_starts, 0, 1);
   c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? ImitationEnvConfig::Goal::Heading : ImitationEnvConfig::Goal::None;
   c.goal_speed = s.number("goal_speed", c.goal_speed, 0, 100);
   c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);

@@ -59,6 +59,7 @@ void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::v
   if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_period > 0) || !std::isfinite(cfg.goal_period))
     fail("goal_speed and goal_weight must be non-negative and goal_period positive");
   if (!(cfg.goal_turn >= 0 && cfg.goal_turn <= 180)) fail("goal_turn must be in [0, 180] degrees");
+  if (!(cfg.fallen_starts >= 0 && cfg.fallen_starts <= 1)) fail("fallen_starts must be a fraction in [0, 1]");
   if (cfg.init == ImitationEnvConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
   if (cfg.env.max_drift > 0 && cfg.init != ImitationEnvConfig::Init::Mocap)
@@ -122,11 +123,17 @@ class ImitationEnv final : public CharacterEnv {
 
   using CharacterEnv::reset;
   Eigen::VectorXd reset(std::mt19937_64& rng) override {
-    if (!has_goal()) return CharacterEnv::reset(rng);  // no draw: runs without a goal keep their random sequence
-    goal_rng_.seed(rng());
+    // (No draw that a feature off does not need: runs without it keep their random sequence.)
+    if (has_goal()) goal_rng_.seed(rng());
     Eigen::VectorXd observation = CharacterEnv::reset(rng);
-    draw_goal();  // after the start is placed: a turn is drawn from where the character faces
-    observe_goal(observation.tail(2));
+    if (cfg_.fallen_starts > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng) < cfg_.fallen_starts) {
+      observation = fall(rng);
+      fallen_episode_ = starts();
+    }
+    if (has_goal()) {
+      draw_goal();  // after the start is placed: a turn is drawn from where the character faces
+      observe_goal(observation.tail(2));
+    }
     return observation;
   }
 
@@ -134,6 +141,7 @@ class ImitationEnv final : public CharacterEnv {
     action_ = action;
     before_ = world().root_position();
     StepResult r = CharacterEnv::step(action);
+    if (fallen() && r.termination == Termination::Fall) r.termination = Termination::None;  // it lies already
     // A new target after each period: this step was rewarded for the old one, the next observes the new.
     const auto periods = [this](double t) { return std::floor((t + 1e-9) / cfg_.goal_period); };
     if (has_goal() && periods(elapsed()) > periods(elapsed() - dt_)) {
@@ -144,6 +152,7 @@ class ImitationEnv final : public CharacterEnv {
   }
 
   bool has_goal() const { return cfg_.goal == ImitationEnvConfig::Goal::Heading; }
+  bool fallen() const { return fallen_episode_ == starts(); }  // this episode began fallen
   Eigen::Vector2d goal_observation() const {
     Eigen::Vector2d out;
     observe_goal(out);
@@ -170,7 +179,26 @@ class ImitationEnv final : public CharacterEnv {
     out[0] = std::cos(relative), out[1] = std::sin(relative);
   }
 
+  // The start just placed, tumbled to a random orientation 1.2 m up, dropped limp for 1.5 s: the
+  // episode starts from where it settled.
+  Eigen::VectorXd fall(std::mt19937_64& rng) {
+    InitState s{world().pose(), PoseVelocity{}, 0.0, {}};
+    s.velocity.joint_ang.assign(world().character().skeleton.joints.size(), Vec3::Zero());
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    Quat turn(gauss(rng), gauss(rng), gauss(rng), gauss(rng));  // uniform over rotations
+    if (!(turn.norm() > 1e-9)) turn = Quat::Identity();
+    s.pose.rot[0] = (turn.normalized() * s.pose.rot[0]).normalized();
+    s.pose.root_pos = Vec3(s.pose.root_pos.x(), s.pose.root_pos.y(), 1.2);
+    CharacterEnv::reset(s);
+    const int settle = static_cast<int>(std::lround(kFallSeconds * cfg_.env.sim.control_hz));
+    for (int k = 0; k < settle; ++k) world().step_limp();
+    InitState lying{world().pose(), world().velocity(), 0.0, {}};
+    return CharacterEnv::reset(lying);
+  }
+  static constexpr double kFallSeconds = 1.5;
+
   ImitationEnvConfig cfg_;
+  long long fallen_episode_ = -1;  // the start (CharacterEnv::starts) that was a fallen one
   double dt_;
   Eigen::VectorXd action_;
   Vec3 before_ = Vec3::Zero();
@@ -247,6 +275,11 @@ Eigen::Vector2d goal_observation(const CharacterEnv& env) {
   const auto* h = dynamic_cast<const ImitationEnv*>(&env);
   if (!h || !h->has_goal()) throw Error("goal_observation: not an imitation environment with goal: heading");
   return h->goal_observation();
+}
+
+bool fallen_start(const CharacterEnv& env) {
+  const auto* h = dynamic_cast<const ImitationEnv*>(&env);
+  return h && h->fallen();
 }
 
 }  // namespace mimic

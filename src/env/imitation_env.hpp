@@ -47,6 +47,12 @@ struct ImitationEnvConfig {
   double lateral_weight = 0.1;   // per m off the centre line
   double control_weight = 1e-3;  // per rad^2 of axis-angle PD targets (28 values for humanoid3d)
   double init_noise = 0.02;      // rad: uniform +- on each joint axis at every start
+  // Fallen starts (a get-up's): this fraction of episodes starts lying where the character fell.
+  // The episode's ordinary start is turned to a random orientation 1.2 m up and dropped limp (no
+  // joint torques) for 1.5 s; it starts from where it settled, and contacts that would end an
+  // episode as a fall do not end this one (it has fallen already): the policy learns to get up
+  // from how a character lands, not only from the clip's own poses.
+  double fallen_starts = 0.0;
   // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn at every start and every
   // goal_period seconds, uniformly within goal_turn degrees of the character's heading at the draw
   // (180: any direction; a steering command turns by less; 0: straight on, the plain walk). With Goal::Heading the forward and lateral terms give way to
@@ -86,6 +92,8 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch, std::
 double goal_heading(const CharacterEnv& env);
 void set_goal_heading(CharacterEnv& env, double yaw);
 bool has_heading_goal(const CharacterEnv& env);
+// Whether the episode under way began from a fallen start (ImitationEnvConfig::fallen_starts).
+bool fallen_start(const CharacterEnv& env);
 // The observation's "goal" part for the target now: its cos and sin in the character's heading frame.
 Eigen::Vector2d goal_observation(const CharacterEnv& env);
 

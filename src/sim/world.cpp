@@ -252,6 +252,15 @@ void World::step() {
   }
 }
 
+void World::step_limp() {
+  const Skeleton& sk = ch_.skeleton;
+  for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+    const int dofs = sk.joints[j].type == JointType::Spherical ? 3 : sk.joints[j].type == JointType::Revolute ? 1 : 0;
+    for (int k = 0; k < dofs; ++k) d_->qfrc_applied[dof_[j] + k] = 0.0;
+  }
+  for (int s = 0; s < substeps_; ++s) mj_step(m_, d_);
+}
+
 LinkFrames World::link_frames() const {
   const Skeleton& sk = ch_.skeleton;
   LinkFrames out;

@@ -70,6 +70,9 @@ class World {
   void set_pd_targets(const Pose& targets);
   // Advances one control step (physics_hz / control_hz physics steps).
   void step();
+  // The same with no joint torques: a limp body under gravity and its joints' damping (a ragdoll
+  // settling where it fell).
+  void step_limp();
 
   // World frames of every joint (= MuJoCo body frames) and the skeleton's sites.
   LinkFrames link_frames() const;
