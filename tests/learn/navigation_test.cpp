@@ -125,8 +125,8 @@ std::string factory_error(const std::string& yaml) {
 TEST(NavigationEnv, IsBuiltByNameOverARuntimeSkillOnTheCourseGiven) {
   MIMIC_NEED_HUMANOID();
   register_control_envs();
-  const auto steered = test::steered_skill_dir(true, "navigation_low");
-  const auto plain = test::steered_skill_dir(false, "navigation_plain");
+  const auto steered = test::steered_skill_dir(true);
+  const auto plain = test::steered_skill_dir(false);
   const YamlReader r("navigation.yaml");
   const EnvFactory f = make_env_factory(
       r.parse("{name: navigation, skill: " + steered.string() + ", terrain: {kind: walls}, decision_steps: 3, view_spacing: 1.0}", ""), r);
