@@ -9,7 +9,8 @@
 #   scripts/recovery.sh           both
 #
 # The get-ups are GETUPS (default: models/humanoid_getup_facedown and models/humanoid_getup_faceup,
-# the zoo's: scripts/zoo.sh makes them).
+# the zoo's: scripts/zoo.sh makes them). A skill is named by its directory, so theirs must differ
+# (two runs' `model` directories collide: link them under other names).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
