@@ -3,20 +3,13 @@
 #include <string>
 
 #include "control/skill_impl.hpp"
+#include "core/config_override.hpp"
 #include "core/error.hpp"
 #include "env/navigation_env.hpp"
 
 namespace mimic {
 
 namespace {
-
-std::string flow_text(const YAML::Node& node) {
-  YAML::Emitter out;
-  out.SetMapFormat(YAML::Flow);
-  out.SetSeqFormat(YAML::Flow);
-  out << node;
-  return out.c_str();
-}
 
 EnvFactory navigation(ConfigSection& s, const YamlReader& reader) {
   const std::string given = s.text("skill", "");
@@ -34,21 +27,18 @@ EnvFactory navigation(ConfigSection& s, const YamlReader& reader) {
   // longer than the controller's.
   std::vector<std::string> settings{"env.goal_period=1000000", "env.max_seconds=" + std::to_string(c.max_seconds + 1.0)};
   const YAML::Node terrain = s.child("terrain");
-  if (terrain.IsDefined()) settings.push_back("env.terrain=" + flow_text(terrain));
+  if (terrain.IsDefined()) settings.push_back("env.terrain=" + flow_yaml(terrain));
   std::shared_ptr<const Skill> skill;
   try {
     skill = Skill::load(dir, "", settings);
   } catch (const Error& e) {
     throw KeyError("skill", e.what());
   }
-  // Checked now, with its message: a skill that takes no heading cannot be steered.
-  {
-    std::unique_ptr<Env> probe = make_skill_env(*skill);
-    if (!dynamic_cast<CharacterEnv*>(probe.get()))
-      throw KeyError("skill", dir.string() + ": the low-level skill must drive a character in its own environment (no behaviour context)");
-  }
-  return [skill, c] {
+  // (make_env_factory builds one now, so a skill that does not fit is an error at the config.)
+  return [skill, c, dir] {
     std::unique_ptr<Env> env = make_skill_env(*skill);
+    if (!dynamic_cast<CharacterEnv*>(env.get()))
+      throw KeyError("skill", dir.string() + ": the low-level skill must drive a character in its own environment (no behaviour context)");
     std::unique_ptr<CharacterEnv> character(dynamic_cast<CharacterEnv*>(env.release()));
     return std::unique_ptr<Env>(std::make_unique<NavigationEnv>(
         std::move(character), [skill](const Eigen::VectorXd& input) { return skill->act(input); }, skill->history(), c));

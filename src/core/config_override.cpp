@@ -5,6 +5,14 @@
 
 namespace mimic {
 
+std::string flow_yaml(const YAML::Node& node) {
+  YAML::Emitter out;
+  out.SetMapFormat(YAML::Flow);
+  out.SetSeqFormat(YAML::Flow);
+  out << node;
+  return out.c_str();
+}
+
 std::string override_config(const std::string& text, const std::string& source, const std::vector<std::string>& settings) {
   if (settings.empty()) return text;
   const YamlReader r(source);

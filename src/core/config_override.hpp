@@ -1,10 +1,15 @@
 #pragma once
 // `--set KEY.PATH=VALUE` applied to a YAML config: what mimic train, eval and the runtime's
 // Skill::load share, so that one setting means the same thing everywhere.
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 #include <vector>
 
 namespace mimic {
+
+// A node as one line of flow YAML ("{kind: walls, redraw: true}"): what a setting's value takes.
+std::string flow_yaml(const YAML::Node& node);
 
 // The config text with `settings` ("ppo.clip=0.1", "rewards.0.episodes=10": keys and list
 // indices joined by dots, the value in YAML; a list's size as the last index appends: with one

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "core/config_file.hpp"
+#include "core/config_override.hpp"
 #include "core/config_section.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
@@ -13,14 +14,7 @@ namespace mimic {
 
 namespace {
 
-std::string flow_yaml(const YAML::Node& n) {
-  if (!n.IsDefined() || n.IsNull()) return "absent";
-  YAML::Emitter e;
-  e.SetMapFormat(YAML::Flow);
-  e.SetSeqFormat(YAML::Flow);
-  e << n;
-  return e.c_str();
-}
+std::string flow_or_absent(const YAML::Node& n) { return !n.IsDefined() || n.IsNull() ? "absent" : flow_yaml(n); }
 
 // The first key path at which `a` and `b` differ ("" at the top), or nullopt.
 std::optional<std::string> first_difference(const YAML::Node& a, const YAML::Node& b, const std::string& path) {
@@ -231,8 +225,8 @@ std::string config_difference(const std::string& first, const std::string& first
   const YAML::Node a = load(first, first_label), b = load(second, second_label);
   const std::optional<std::string> path = first_difference(a, b, "");
   if (!path) return "";
-  return (path->empty() ? std::string("the whole config") : *path) + ": " + flow_yaml(node_at(a, *path)) + " in " + first_label + ", " +
-         flow_yaml(node_at(b, *path)) + " in " + second_label;
+  return (path->empty() ? std::string("the whole config") : *path) + ": " + flow_or_absent(node_at(a, *path)) + " in " + first_label + ", " +
+         flow_or_absent(node_at(b, *path)) + " in " + second_label;
 }
 
 TrainConfig load_train_config(const std::filesystem::path& path) {
