@@ -59,15 +59,16 @@ struct Controller::Impl {
   double push_left = 0.0;   // seconds of the push still to come
   bool pushing = false;     // the active environment holds a push of ours
   double heading = std::nan("");  // the commanded world yaw (set_heading); NaN: none
+  std::vector<int> goal_offsets;  // per skill: where its observation's "goal" part is; -1 for a skill without the goal
 
   // The commanded heading as the active skill's target, its newest frame showing it (the
   // environment's own redraws are overridden step by step). Nothing for a skill without the goal.
   void apply_heading() {
-    CharacterEnv* character = character_of(env());
-    if (std::isnan(heading) || !character || !has_heading_goal(*character)) return;
-    set_goal_heading(*character, heading);
-    for (const ObservationSlice& part : env().observation_layout())
-      if (part.name == "goal") frames.back().segment(part.offset, 2) = goal_observation(*character);
+    const int offset = goal_offsets[active];
+    if (std::isnan(heading) || offset < 0) return;
+    CharacterEnv& character = *character_of(env());
+    set_goal_heading(character, heading);
+    frames.back().segment(offset, 2) = goal_observation(character);
   }
 
   Env& env() { return *envs[active]; }
@@ -191,6 +192,12 @@ Controller::Controller(std::vector<std::shared_ptr<const Skill>> skills, std::ui
       if (other->name() == s->name()) throw Error("two skills are named '" + s->name() + "': give them names (Skill::load's second argument)");
     impl_->envs.push_back(s->impl().factory());
     impl_->skills.push_back(s);
+    int goal = -1;  // a skill trained with a heading goal: where its observation shows it
+    CharacterEnv* character = character_of(*impl_->envs.back());
+    if (character && has_heading_goal(*character))
+      for (const ObservationSlice& part : impl_->envs.back()->observation_layout())
+        if (part.name == "goal") goal = part.offset;
+    impl_->goal_offsets.push_back(goal);
   }
   const CharacterEnv* character = character_of(*impl_->envs.front());
   impl_->dt = character ? 1.0 / character->world().config().control_hz : 0.0;
@@ -379,11 +386,7 @@ void Controller::set_heading(double yaw) {
   impl_->heading = std::remainder(yaw, 2 * kPi);
 }
 double Controller::heading() const { return impl_->heading; }
-bool Controller::steerable(const std::string& skill) const {
-  Env& env = *impl_->envs[impl_->index_of(skill)];
-  const CharacterEnv* character = character_of(env);
-  return character && has_heading_goal(*character);
-}
+bool Controller::steerable(const std::string& skill) const { return impl_->goal_offsets[impl_->index_of(skill)] >= 0; }
 double Controller::facing() const {
   const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
   return character ? heading_angle(character->world().pose().rot[0]) : 0.0;
