@@ -142,13 +142,19 @@ TEST(ImitationEnv, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
   StepResult r = env->step(zero);
   ASSERT_EQ(r.reward_terms.size(), 3u);  // alive, goal, control: the track's terms give way
   EXPECT_EQ(r.reward_terms[1].first, "goal");
-  EXPECT_NEAR(term(r, "goal"), 2.0 * std::exp(-0.25 * 0.5 * 0.5), 1e-9);
+  EXPECT_NEAR(term(r, "goal"), 2.0 * std::exp(-2.5 * 0.5 * 0.5), 1e-9);
   EXPECT_NEAR(r.observation[env->observation_size() - 2], 0.0, 1e-6);  // cos, sin of the target
   EXPECT_NEAR(r.observation[env->observation_size() - 1], 1.0, 1e-6);  // in the heading frame
-  // Along +X: 2 m/s for a target of 1, a miss of 1.
+  // Along +X: 2 m/s for a target of 1, faster than asked, no miss.
   env->reset(flying(ch));
   set_goal_heading(*env, 0.0);
-  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0 * std::exp(-0.25), 1e-9);
+  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0, 1e-9);
+  // Away from it (-X): -2 m/s along the target, a miss of 3, at a sharpness of 0.1.
+  cfg.goal_sharpness = 0.1;
+  env = make_imitation_env(ch, nullptr, cfg);
+  env->reset(flying(ch));
+  set_goal_heading(*env, kPi);
+  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0 * std::exp(-0.1 * 9.0), 1e-9);
   // Parts are named once and hold at least one value.
   const auto nothing = [](const CharacterEnv&, Eigen::Ref<Eigen::VectorXd>) {};
   EXPECT_THROW(env->add_observation_part("goal", 1, nothing), Error);

@@ -56,8 +56,9 @@ void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::v
       {"control_weight", cfg.control_weight}, {"init_noise", cfg.init_noise}};
   for (const auto& [name, v] : values)
     if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
-  if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_period > 0) || !std::isfinite(cfg.goal_period))
-    fail("goal_speed and goal_weight must be non-negative and goal_period positive");
+  if (!(cfg.goal_speed >= 0) || !(cfg.goal_weight >= 0) || !(cfg.goal_sharpness >= 0) || !(cfg.goal_period > 0) ||
+      !std::isfinite(cfg.goal_period))
+    fail("goal_speed, goal_weight and goal_sharpness must be non-negative and goal_period positive");
   if (!(cfg.goal_turn >= 0 && cfg.goal_turn <= 180)) fail("goal_turn must be in [0, 180] degrees");
   if (!(cfg.fallen_starts >= 0 && cfg.fallen_starts <= 1)) fail("fallen_starts must be a fraction in [0, 1]");
   if (cfg.init == ImitationEnvConfig::Init::Mocap && clips.empty())
@@ -98,8 +99,8 @@ class ImitationEnv final : public CharacterEnv {
       add_reward_term("goal", [this, dt](const CharacterEnv& env) {
         const Vec3 now = env.world().root_position();
         const double along = (std::cos(goal_) * (now.x() - before_.x()) + std::sin(goal_) * (now.y() - before_.y())) / dt;
-        const double miss = cfg_.goal_speed - along;
-        return cfg_.goal_weight * std::exp(-0.25 * miss * miss);
+        const double miss = std::max(0.0, cfg_.goal_speed - along);
+        return cfg_.goal_weight * std::exp(-cfg_.goal_sharpness * miss * miss);
       });
       add_observation_part("goal", 2, [this](const CharacterEnv&, Eigen::Ref<Eigen::VectorXd> out) { observe_goal(out); });
     } else {

@@ -56,14 +56,18 @@ struct ImitationEnvConfig {
   // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn at every start and every
   // goal_period seconds, uniformly within goal_turn degrees of the character's heading at the draw
   // (180: any direction; a steering command turns by less; 0: straight on, the plain walk). With Goal::Heading the forward and lateral terms give way to
-  //   goal   goal_weight * exp(-0.25 (goal_speed - d . v)^2), d the target direction, v the root's
-  //          mean horizontal velocity over the step
+  //   goal   goal_weight * exp(-goal_sharpness max(0, goal_speed - d . v)^2), d the target
+  //          direction, v the root's mean horizontal velocity over the step (DeepMimic's target
+  //          heading reward, Peng et al. 2018: sharpness 2.5, no penalty for going faster; a
+  //          flatter kernel, exp(-0.25 miss^2), pays a walker that ignores targets within 90 degrees 0.95 of
+  //          the most, this one 0.68)
   // and the observation gains "goal": cos and sin of the target direction in the heading frame.
   enum class Goal { None, Heading };
   Goal goal = Goal::None;
   double goal_speed = 1.0;   // m/s along the target direction
   double goal_period = 4.0;  // s between targets
   double goal_weight = 1.0;
+  double goal_sharpness = 2.5;  // 1 / (m/s)^2
   double goal_turn = 180.0;  // degrees, in [0, 180]
 
   static CharacterEnvConfig defaults() {
