@@ -199,6 +199,13 @@ expect_in("${LAST_OUT}" "(2 episodes) in 3 epochs")
 run_ok(eval ${OUT}/bc_run --episodes 2 --json ${OUT}/bc.json)
 file(READ ${OUT}/bc.json bc_json)
 expect_in("${bc_json}" "\"episodes\": 2, \"actions\": \"mean\", \"return_mean\": ")
+# A baseline: the same episodes with a fixed action in place of the policy's (the walker has 6).
+run_ok(eval ${OUT}/bc_run --episodes 2 --fixed-action 0,0,0,0,0,0 --json ${OUT}/bc_fixed.json)
+expect_in("${LAST_OUT}" "a baseline: every action the one given")
+file(READ ${OUT}/bc_fixed.json bc_fixed_json)
+expect_in("${bc_fixed_json}" "\"episodes\": 2, \"actions\": \"fixed 0,0,0,0,0,0\", \"return_mean\": ")
+run_fails("the skill acts with 6" eval ${OUT}/bc_run --episodes 1 --fixed-action 0)
+run_fails("--fixed-action measures the episodes only" eval ${OUT}/bc_run --episodes 1 --fixed-action 0,0,0,0,0,0 --latency)
 run_fails("not a training run" eval ${OUT} --episodes 2)
 # Acting needs no reward sources: the GAIL run loads even where its expert file does not resolve.
 file(MAKE_DIRECTORY ${OUT}/moved)

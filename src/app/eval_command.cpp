@@ -223,13 +223,21 @@ void evaluate(const EvalArgs& args) {
   // The episodes training would have evaluated (control/episodes.hpp).
   EpisodeOptions episodes = training_episodes(args.run);
   episodes.episodes = args.episodes, episodes.seed = args.seed, episodes.deterministic = !args.stochastic;
+  const bool fixed = !args.fixed_action.empty();
+  if (fixed) {
+    if (!args.clip.empty() || !args.masses.empty() || !args.switches.empty() || args.latency || !args.transitions.empty() ||
+        !args.steering.empty())
+      throw Error("--fixed-action measures the episodes only: give it without --clip, --robustness, --switch, --latency, --transitions "
+                  "and --steering");
+    episodes.fixed_action = Eigen::Map<const Eigen::VectorXd>(args.fixed_action.data(), static_cast<Eigen::Index>(args.fixed_action.size()));
+  }
   std::mt19937_64 noise(args.seed);
   EpisodeStats s;
   (void)run_episodes(*skill, episodes, noise, s);
   const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
   // Episodes ended by a failure: a fall, or a tracking env's max_drift (the JSON's key predates it).
   const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
-  const char* actions = args.stochastic ? "sampled" : "mean";
+  const std::string actions = fixed ? "fixed " + fmt::format("{}", fmt::join(args.fixed_action, ",")) : args.stochastic ? "sampled" : "mean";
   spdlog::info("{}", args.run.string());
   for (const std::string& setting : args.settings) spdlog::info("  --set           {} (the run's config.yaml is unchanged)", setting);
   spdlog::info("  episodes        {} ({} actions): return {:.2f} +- {:.2f}, length {:.1f} steps, failure rate {:.2f}", s.returns.size(),
@@ -240,6 +248,11 @@ void evaluate(const EvalArgs& args) {
                                  "\"return_std\": {}, \"episode_length\": {}, \"fall_rate\": {}",
                                  json_string(args.run.string()), settings, s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
                                  mean_of(lengths), fall_rate);
+  if (fixed) {
+    spdlog::info("  (a baseline: every action the one given, not the policy's; the other measurements are the policy's and are not made)");
+    if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
+    return;
+  }
 
   // Imitation: a character environment and a clip to compare with. A behaviour-context env is
   // measured through the env it wraps, the policy's input given the held context's one-hot.
@@ -349,6 +362,10 @@ void add_eval_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(0.0, 180.0));
   ev->add_option("--steering-trials", args->steering_trials, "trials per turn")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_option("--fixed-action", args->fixed_action,
+                 "a baseline: the episodes (only they) with this action in place of the policy's, e.g. 0 for a navigation "
+                 "controller's straight on; the same --seed gives the same starts and courses")
+      ->delimiter(',');
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();

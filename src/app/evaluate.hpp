@@ -31,6 +31,7 @@ struct EvalArgs {
   double recover_tau = 0.2;  // the score at which the skill takes the character back from a get-up
   std::vector<double> steering;  // commanded turns (degrees) for a skill with a heading goal
   int steering_trials = 20;
+  std::vector<double> fixed_action;  // a baseline: the episodes with this action in place of the policy's
 };
 
 // Measures the run or model directory `args.run` as `mimic eval` does: a table on the terminal,

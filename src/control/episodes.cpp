@@ -31,6 +31,9 @@ Rollout run_episodes(const Skill& skill, const EpisodeOptions& o, std::mt19937_6
     throw Error(skill.name() + ": episodes need episodes, slots and threads >= 1");
   const Skill::Impl& s = skill.impl();
   const int n_env = std::min(o.episodes, o.slots), frame = s.frame_size, in = skill.input_size(), na = s.action_size;
+  if (o.fixed_action.size() > 0 && (o.fixed_action.size() != na || !o.fixed_action.allFinite()))
+    throw Error(skill.name() + ": a fixed action of " + std::to_string(o.fixed_action.size()) + " finite values was given; the skill acts with " +
+                std::to_string(na));
   // Each environment's generator, as the collector seeds its environments.
   std::seed_seq seq{o.seed, std::uint64_t{0x6d696d6963}};  // "mimic"
   std::vector<std::uint64_t> seeds(static_cast<std::size_t>(n_env));
@@ -75,7 +78,9 @@ Rollout run_episodes(const Skill& skill, const EpisodeOptions& o, std::mt19937_6
       const Slot& slot = slots[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])];
       for (int f = 0; f < s.history; ++f) raw.row(k).segment(f * frame, frame) = slot.frames[static_cast<std::size_t>(f)].transpose();
     }
-    const FloatMatrix mean = s.policy.forward(s.normalised(raw));
+    FloatMatrix mean(b, na);
+    if (o.fixed_action.size() > 0) mean.rowwise() = o.fixed_action.cast<float>().transpose();
+    else mean = s.policy.forward(s.normalised(raw));
     const std::size_t base = r.env_reward.size();
     for (Eigen::Index k = 0; k < b; ++k) {
       const int e = active[static_cast<std::size_t>(k)];

@@ -19,6 +19,9 @@ struct EpisodeOptions {
   int threads = 1;  // threads stepping them (the results do not depend on it)
   std::uint64_t seed = 12345;  // the environments' generators (their starts)
   bool deterministic = true;   // the policy's mean; else sampled with its sigma, noise from the caller's generator
+  // A baseline: this action in place of the policy's mean at every step (empty: the policy's),
+  // e.g. a navigation controller's 0, "straight on". Its size must be the skill's action size.
+  Eigen::VectorXd fixed_action;
 };
 
 // Runs o.episodes complete episodes. Returns the steps in the collector's layout (raw inputs, next

@@ -239,3 +239,34 @@ TEST(Runtime, EvalAndRecordEpisodesAreTheCollectorsForTheSameSeed) {
     }
   }
 }
+
+// A baseline for `mimic eval --fixed-action`: the same starts as the policy's episodes, every
+// action the one given; a wrong size is an error that says both sizes.
+TEST(Runtime, AFixedActionTakesThePolicysPlaceInEpisodes) {
+  const auto skill = Skill::load(std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / "walker_ppo");
+  EpisodeOptions o;
+  o.episodes = 3, o.slots = 3, o.seed = 7;
+  EpisodeStats policy_stats, fixed_stats;
+  std::mt19937_64 noise(1);
+  const Rollout policy = run_episodes(*skill, o, noise, policy_stats);
+  o.fixed_action = Eigen::VectorXd::Constant(skill->action_size(), 0.25);
+  const Rollout fixed = run_episodes(*skill, o, noise, fixed_stats);
+  ASSERT_EQ(fixed.env_steps.size(), 3u);
+  for (std::size_t e = 0; e < 3; ++e)
+    EXPECT_EQ(Eigen::VectorXd(fixed.frame(fixed.env_steps[e].front())), Eigen::VectorXd(policy.frame(policy.env_steps[e].front())));
+  for (std::size_t i = 0; i < fixed.action.size(); ++i) {
+    EXPECT_EQ(fixed.action[i], 0.25f);
+    EXPECT_EQ(fixed.mean[i], 0.25f);
+  }
+  ASSERT_EQ(fixed_stats.returns.size(), 3u);
+  EXPECT_LT(mean_of(fixed_stats.returns), 0.5 * mean_of(policy_stats.returns));  // the trained walker walks; a constant action does not
+  o.fixed_action = Eigen::VectorXd::Zero(1);
+  try {
+    run_episodes(*skill, o, noise, fixed_stats);
+    FAIL() << "a fixed action of the wrong size was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a fixed action of 1 finite values was given; the skill acts with " + std::to_string(skill->action_size())),
+              std::string::npos)
+        << e.what();
+  }
+}
