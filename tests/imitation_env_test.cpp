@@ -136,25 +136,32 @@ TEST(ImitationEnv, AHeadingGoalRewardsSpeedAlongTheTargetAndIsObserved) {
   ASSERT_EQ(layout.back().size, 2);
   ASSERT_EQ(layout.back().offset + 2, env->observation_size());
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
-  // Flying at (2, 0.5) m/s, facing +X: towards +Y the speed along the target is 0.5, a miss of 0.5.
+  // Flying at (2, 0.5) m/s, facing +X: towards +Y the speed along the target is 0.5, a miss of
+  // 0.5, the speed across it 2; facing across it earns nothing of the facing share.
   env->reset(flying(ch));
   set_goal_heading(*env, kPi / 2);
   StepResult r = env->step(zero);
   ASSERT_EQ(r.reward_terms.size(), 3u);  // alive, goal, control: the track's terms give way
   EXPECT_EQ(r.reward_terms[1].first, "goal");
-  EXPECT_NEAR(term(r, "goal"), 2.0 * std::exp(-2.5 * 0.5 * 0.5), 1e-9);
+  EXPECT_NEAR(term(r, "goal"), 2.0 * 0.7 * std::exp(-2.5 * (0.5 * 0.5 + 0.1 * 2.0 * 2.0)), 1e-9);
   EXPECT_NEAR(r.observation[env->observation_size() - 2], 0.0, 1e-6);  // cos, sin of the target
   EXPECT_NEAR(r.observation[env->observation_size() - 1], 1.0, 1e-6);  // in the heading frame
-  // Along +X: 2 m/s for a target of 1, faster than asked, no miss.
+  // Along +X: 2 m/s for a target of 1, faster than asked (no miss), 0.5 across; facing it.
   env->reset(flying(ch));
   set_goal_heading(*env, 0.0);
-  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0, 1e-9);
-  // Away from it (-X): -2 m/s along the target, a miss of 3, at a sharpness of 0.1.
-  cfg.goal_sharpness = 0.1;
-  env = make_imitation_env(ch, nullptr, cfg);
+  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0 * (0.7 * std::exp(-2.5 * 0.1 * 0.5 * 0.5) + 0.3), 1e-9);
+  // Away from it (-X): moving away earns nothing, and neither does facing away.
   env->reset(flying(ch));
   set_goal_heading(*env, kPi);
-  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0 * std::exp(-0.1 * 9.0), 1e-9);
+  EXPECT_NEAR(term(env->step(zero), "goal"), 0.0, 1e-9);
+  // Towards 45 degrees to the left: along (2 + 0.5) / sqrt 2, across (2 - 0.5) / sqrt 2; facing
+  // cos 45; at a sharpness of 0.1 and half the reward for facing.
+  cfg.goal_sharpness = 0.1, cfg.goal_facing = 0.5;
+  env = make_imitation_env(ch, nullptr, cfg);
+  env->reset(flying(ch));
+  set_goal_heading(*env, kPi / 4);
+  const double across = 1.5 / std::sqrt(2.0);
+  EXPECT_NEAR(term(env->step(zero), "goal"), 2.0 * (0.5 * std::exp(-0.1 * 0.1 * across * across) + 0.5 * std::sqrt(0.5)), 1e-9);
   // Parts are named once and hold at least one value.
   const auto nothing = [](const CharacterEnv&, Eigen::Ref<Eigen::VectorXd>) {};
   EXPECT_THROW(env->add_observation_part("goal", 1, nothing), Error);

@@ -220,6 +220,7 @@ EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
   c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);
   c.goal_weight = s.number("goal_weight", c.goal_weight, 0, 1e6);
   c.goal_sharpness = s.number("goal_sharpness", c.goal_sharpness, 0, 1e6);
+  c.goal_facing = s.number("goal_facing", c.goal_facing, 0, 1);
   c.goal_turn = s.number("goal_turn", c.goal_turn, 0, 180);
   std::vector<std::shared_ptr<const Clip>> clips;
   for (const std::string& f : clip_files) clips.push_back(load_clip(data_path(f, "clip", reader), ch.path));

@@ -60,6 +60,7 @@ void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::v
       !std::isfinite(cfg.goal_period))
     fail("goal_speed, goal_weight and goal_sharpness must be non-negative and goal_period positive");
   if (!(cfg.goal_turn >= 0 && cfg.goal_turn <= 180)) fail("goal_turn must be in [0, 180] degrees");
+  if (!(cfg.goal_facing >= 0 && cfg.goal_facing <= 1)) fail("goal_facing must be a share in [0, 1]");
   if (!(cfg.fallen_starts >= 0 && cfg.fallen_starts <= 1)) fail("fallen_starts must be a fraction in [0, 1]");
   if (cfg.init == ImitationEnvConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
@@ -98,9 +99,13 @@ class ImitationEnv final : public CharacterEnv {
     if (cfg.goal == ImitationEnvConfig::Goal::Heading) {
       add_reward_term("goal", [this, dt](const CharacterEnv& env) {
         const Vec3 now = env.world().root_position();
-        const double along = (std::cos(goal_) * (now.x() - before_.x()) + std::sin(goal_) * (now.y() - before_.y())) / dt;
-        const double miss = std::max(0.0, cfg_.goal_speed - along);
-        return cfg_.goal_weight * std::exp(-cfg_.goal_sharpness * miss * miss);
+        const Eigen::Vector2d d(std::cos(goal_), std::sin(goal_));
+        const Eigen::Vector2d v((now.x() - before_.x()) / dt, (now.y() - before_.y()) / dt);
+        const double along = d.dot(v), miss = std::max(0.0, cfg_.goal_speed - along), across = (v - along * d).squaredNorm();
+        const double moving = along > 0 ? std::exp(-cfg_.goal_sharpness * (miss * miss + 0.1 * across)) : 0.0;
+        const double yaw = heading_angle(env.world().pose().rot[0]);
+        const double facing = std::max(0.0, std::cos(yaw) * d.x() + std::sin(yaw) * d.y());
+        return cfg_.goal_weight * ((1.0 - cfg_.goal_facing) * moving + cfg_.goal_facing * facing);
       });
       add_observation_part("goal", 2, [this](const CharacterEnv&, Eigen::Ref<Eigen::VectorXd> out) { observe_goal(out); });
     } else {
