@@ -461,6 +461,13 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   file(READ ${OUT}/steer_eval.json steer_eval)
   expect_in("${steer_eval}" "\"steering\": {\"trials\": 2")
   run_fails("was not trained with a heading goal" eval ${OUT}/imitated_model --episodes 1 --trials 1 --steering 90)
+  # Crossing a course given by --set, the steered skill commanded along it; flat ground is refused.
+  run_ok(eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --crossing --crossing-trials 2 --crossing-seconds 1
+         --set "env.terrain={kind: stairs, step_height: 0.05}" --json ${OUT}/crossing.json)
+  expect_in("${LAST_OUT}" "2 trials of at most 1 s over the stairs course (steps 0.05 m high, 0.30 m deep)")
+  file(READ ${OUT}/crossing.json crossing_json)
+  expect_in("${crossing_json}" "\"crossing\": {\"terrain\": \"stairs\", \"step_height\": 0.05, \"finish_x\": 9, \"trials\": 2")
+  run_fails("the run's ground is flat" eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --crossing)
   run_fails("use --method iccgan or gail, not tracking" imitate ${OUT}/jj_mirror.mclip --task heading --method tracking -o ${OUT}/imitate_steer2)
   # A CMU clip retargeted by a map, tracked (seed 003's recipe).
   run_ok(imitate ${CMU} --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking

@@ -127,6 +127,24 @@ TEST(Terrain, StairsRiseByStepHeightPerStepDepth) {
   EXPECT_NEAR(ray_height(*w, top + s.landing + s.step_count * s.step_depth + 0.5, 0.0), 0.0, 1e-6);
 }
 
+TEST(Terrain, CourseEndIsWhereTheLastFeatureEnds) {
+  // Defaults by hand: stairs 2 + (8 up + 7 down) x 0.3 + a 2 m landing; gaps 2 + 10 x 0.5 + 9 x 2;
+  // walls 2 + 4 x 7 + 0.3; one 10 m slope from 2; a height field's bumps run to `ahead` (40).
+  EXPECT_NEAR(Terrain(spec_of(TerrainKind::Stairs)).course_end(), 8.5, 1e-12);
+  EXPECT_NEAR(Terrain(spec_of(TerrainKind::Gaps)).course_end(), 25.0, 1e-12);
+  EXPECT_NEAR(Terrain(spec_of(TerrainKind::Walls)).course_end(), 30.3, 1e-12);
+  EXPECT_NEAR(Terrain(spec_of(TerrainKind::Slope)).course_end(), 12.0, 1e-12);
+  EXPECT_NEAR(Terrain(spec_of(TerrainKind::HeightField)).course_end(), 40.0, 1e-12);
+  // The ground just before the end is the last feature; just after, the flat ground beyond.
+  const Terrain stairs(spec_of(TerrainKind::Stairs));
+  EXPECT_NEAR(stairs.height(8.45, 0.0), 0.15, 1e-12);
+  EXPECT_NEAR(stairs.height(8.55, 0.0), 0.0, 1e-12);
+  const Terrain gaps(spec_of(TerrainKind::Gaps));
+  EXPECT_NEAR(gaps.height(24.95, 0.0), -2.0, 1e-12);
+  EXPECT_NEAR(gaps.height(25.05, 0.0), 0.0, 1e-12);
+  EXPECT_THROW((void)Terrain(spec_of(TerrainKind::Flat)).course_end(), Error);
+}
+
 TEST(Terrain, EachWallBlocksTheCourseButForOneOpeningDrawnFromTheSeed) {
   const TerrainSpec s = spec_of(TerrainKind::Walls);  // 5 walls 1 m high, 0.3 m thick, every 7 m from x = 2, 20 m wide
   const Terrain walls(s);

@@ -5,8 +5,8 @@
 // time performing without and with get-up skills); with --latency, the policy's
 // forward-pass time at batch 1 and, for an adversarial run, its discriminators'; with --switch, a
 // policy over behaviour contexts changing behaviour on command; with --steering, a skill with a
-// heading goal turning on command. A table on the terminal, and the
-// same figures as JSON with --json.
+// heading goal turning on command; with --crossing, how often the skill gets over a course. A
+// table on the terminal, and the same figures as JSON with --json.
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -226,9 +226,9 @@ void evaluate(const EvalArgs& args) {
   const bool fixed = !args.fixed_action.empty();
   if (fixed) {
     if (!args.clip.empty() || !args.masses.empty() || !args.switches.empty() || args.latency || !args.transitions.empty() ||
-        !args.steering.empty())
-      throw Error("--fixed-action measures the episodes only: give it without --clip, --robustness, --switch, --latency, --transitions "
-                  "and --steering");
+        !args.steering.empty() || args.crossing)
+      throw Error("--fixed-action measures the episodes only: give it without --clip, --robustness, --switch, --latency, --transitions, "
+                  "--steering and --crossing");
     episodes.fixed_action = Eigen::Map<const Eigen::VectorXd>(args.fixed_action.data(), static_cast<Eigen::Index>(args.fixed_action.size()));
   }
   std::mt19937_64 noise(args.seed);
@@ -308,6 +308,7 @@ void evaluate(const EvalArgs& args) {
   if (!args.recover.empty()) json += recovery(args);
   if (!args.transitions.empty()) json += transitions(args, run_skill(args.run, args.settings, /*discriminators=*/true));
   if (!args.steering.empty()) json += steering(args);
+  if (args.crossing) json += crossing(args);
   if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
 }
 
@@ -362,6 +363,11 @@ void add_eval_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(0.0, 180.0));
   ev->add_option("--steering-trials", args->steering_trials, "trials per turn")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_flag("--crossing", args->crossing,
+              "how often the skill gets over its course (the run's env.terrain, or one given by --set \"env.terrain={kind: stairs, "
+              "step_height: 0.1}\"); a skill with a heading goal is commanded along it");
+  ev->add_option("--crossing-trials", args->crossing_trials, "trials over the course")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_option("--crossing-seconds", args->crossing_seconds, "the longest trial (s)")->capture_default_str()->check(CLI::PositiveNumber);
   ev->add_option("--fixed-action", args->fixed_action,
                  "a baseline: the episodes (only they) with this action in place of the policy's, e.g. 0 for a navigation "
                  "controller's straight on; the same --seed gives the same starts and courses")

@@ -1,6 +1,6 @@
 // `mimic eval`'s measurements in runtime sessions of several skills (control/): seed 004 §6.5's
 // transition test (--transitions) and robustness with recovery (--recover); and a steered skill's
-// response to commanded turns (--steering).
+// response to commanded turns (--steering) and the crossing of a course (--crossing).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "env/imitation_env.hpp"
+#include "learn/imitation/crossing_eval.hpp"
 #include "learn/imitation/steering_eval.hpp"
 
 namespace mimic::app {
@@ -128,6 +129,49 @@ std::string steering(const EvalArgs& args) {
                         json_number(mean_of(r.speed_along)));
   }
   return json + "]}";
+}
+
+// The run's course crossed (learn/imitation/crossing_eval.hpp): its own terrain, or another given
+// by --set env.terrain={...}; a skill with a heading goal is commanded along the course.
+std::string crossing(const EvalArgs& args) {
+  CrossingOptions o;
+  o.trials = args.crossing_trials;
+  o.seconds = args.crossing_seconds;
+  o.seed = args.seed;
+  std::vector<std::string> settings = args.settings;
+  settings.push_back(fmt::format("env.max_seconds={}", o.seconds + 1.0));
+  std::shared_ptr<const Skill> skill = run_skill(args.run, settings);
+  const std::unique_ptr<Env> probe = make_skill_env(*skill);
+  const CharacterEnv* probed = character_of(*probe);
+  if (!probed) throw Error(args.run.string() + ": --crossing needs a character environment");
+  if (probed->terrain().spec().kind == TerrainKind::Flat)
+    throw Error(args.run.string() + ": --crossing: the run's ground is flat; give a course, e.g. --set \"env.terrain={kind: stairs, step_height: 0.1}\"");
+  if (has_heading_goal(*probed)) {  // the command is the only target
+    settings.push_back("env.goal_period=1000000");
+    skill = run_skill(args.run, settings);
+  }
+  const std::unique_ptr<Env> env = make_skill_env(*skill);
+  CharacterEnv* character = character_of(*env);
+  const TerrainSpec& course = character->terrain().spec();
+  CrossingReport r;
+  try {
+    r = measure_crossing(*character, [&skill](const Eigen::VectorXd& input) { return skill->act(input); }, skill->history(), o);
+  } catch (const Error& e) {
+    throw Error(args.run.string() + ": --crossing: " + e.what());
+  }
+  spdlog::info("  crossing        {} trials of at most {:.0f} s over the {} course{}; across: the root {:.1f} m past its last feature (x = {:.2f} m) "
+               "before it is down", r.trials, r.seconds, to_string(course.kind),
+               course.kind == TerrainKind::Stairs ? fmt::format(" (steps {:.2f} m high, {:.2f} m deep)", course.step_height, course.step_depth) : "",
+               o.margin, r.finish_x);
+  spdlog::info("    crossed {} of {} ({:.0f} %), down {}, stopped short {}; progress {:.2f} of the course (mean){}", r.crossed, r.trials,
+               100.0 * r.success_rate(), r.falls, r.trials - r.crossed - r.falls, mean_of(r.progress),
+               r.seconds_to_cross.empty() ? std::string() : fmt::format("; {:.1f} s to cross (median)", median_of(r.seconds_to_cross)));
+  return fmt::format(", \"crossing\": {{\"terrain\": \"{}\", \"step_height\": {}, \"finish_x\": {}, \"trials\": {}, \"seconds\": {}, "
+                     "\"crossed\": {}, \"falls\": {}, \"success_rate\": {}, \"progress_mean\": {}, \"progress\": {}, "
+                     "\"seconds_to_cross_median\": {}}}",
+                     to_string(course.kind), course.kind == TerrainKind::Stairs ? json_number(course.step_height) : "null", json_number(r.finish_x),
+                     r.trials, json_number(r.seconds), r.crossed, r.falls, json_number(r.success_rate()), json_number(mean_of(r.progress)),
+                     json_numbers(r.progress), json_number(median_of(r.seconds_to_cross)));
 }
 
 }  // namespace mimic::app

@@ -31,6 +31,9 @@ struct EvalArgs {
   double recover_tau = 0.2;  // the score at which the skill takes the character back from a get-up
   std::vector<double> steering;  // commanded turns (degrees) for a skill with a heading goal
   int steering_trials = 20;
+  bool crossing = false;  // the run's course (or --set env.terrain's) crossed
+  int crossing_trials = 20;
+  double crossing_seconds = 20.0;
   std::vector<double> fixed_action;  // a baseline: the episodes with this action in place of the policy's
 };
 
@@ -45,6 +48,8 @@ std::string transitions(const EvalArgs& args, const std::shared_ptr<const Skill>
 std::string recovery(const EvalArgs& args);
 // Steering (learn/imitation/steering_eval.hpp) at each turn of args.steering.
 std::string steering(const EvalArgs& args);
+// The course crossed (learn/imitation/crossing_eval.hpp), args.crossing_trials times.
+std::string crossing(const EvalArgs& args);
 // The run's environment for seed 004's projectile test at `mass` (0: no cubes): the user's --set,
 // then cubes at the torso every frame and episodes a second longer than --robustness-seconds.
 std::vector<std::string> projectile_settings(const EvalArgs& args, double mass);

@@ -81,6 +81,19 @@ Terrain::Terrain(const TerrainSpec& spec) : spec_(spec) {
   }
 }
 
+double Terrain::course_end() const {
+  const TerrainSpec& s = spec_;
+  switch (s.kind) {
+    case TerrainKind::Flat: break;
+    case TerrainKind::Slope: return s.start_zone + s.slope_segments * s.slope_length;
+    case TerrainKind::Gaps: return s.start_zone + s.gap_count * s.gap_width + (s.gap_count - 1) * s.gap_spacing;
+    case TerrainKind::Stairs: return s.start_zone + (2 * s.step_count - 1) * s.step_depth + s.landing;
+    case TerrainKind::HeightField: return s.ahead;
+    case TerrainKind::Walls: return s.start_zone + (s.wall_count - 1) * s.wall_spacing + s.wall_thickness;
+  }
+  throw Error("terrain: flat ground has no course to cross");
+}
+
 void Terrain::build_slope() {
   const TerrainSpec& s = spec_;
   require(std::abs(s.slope_deg) < 60 && s.slope_length > 0 && s.slope_segments >= 1, "slope: need |slope_deg| < 60, slope_length > 0, slope_segments >= 1");

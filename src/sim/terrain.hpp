@@ -65,6 +65,9 @@ class Terrain {
   double height(double x, double y) const;
   // The plane under everything (gap floors, ground beyond the terrain).
   double base_height() const { return base_; }
+  // Where the course's last feature ends along +x: past the last incline, gap, step down or wall;
+  // a height field's bumps run to `ahead`. Flat ground has no course: Error.
+  double course_end() const;
   // Adds the ground to MJCF options: flat keeps the options' floor; other kinds replace it.
   void add_to(MjcfOptions& opts) const;
   // Writes the height-field samples into a model compiled from add_to's options (a no-op for
