@@ -23,6 +23,7 @@ EnvFactory navigation(ConfigSection& s, const YamlReader& reader) {
   c.view_spacing = s.number("view_spacing", c.view_spacing, 1e-3, 1e3);
   c.progress_weight = s.number("progress_weight", c.progress_weight, 0, 1e6);
   c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
+  c.height_map = s.boolean("height_map", c.height_map);
   // The skill's own environment on the course, its targets only the controller's, its episodes
   // longer than the controller's.
   std::vector<std::string> settings{"env.goal_period=1000000", "env.max_seconds=" + std::to_string(c.max_seconds + 1.0)};

@@ -25,7 +25,8 @@ NavigationEnv::NavigationEnv(std::unique_ptr<CharacterEnv> skill_env, LowLevelPo
 }
 
 std::vector<ObservationSlice> NavigationEnv::observation_layout() const {
-  const int n = grid_ahead_ * grid_across_;
+  const int n = map_size();
+  if (n == 0) return {{"heading", 0, 2}, {"lateral", 2, 1}};
   return {{"height_map", 0, n}, {"heading", n, 2}, {"lateral", n + 2, 1}};
 }
 
@@ -45,12 +46,12 @@ Eigen::VectorXd NavigationEnv::observe() const {
   const double yaw = heading_angle(inner_->world().pose().rot[0]);
   const Terrain& terrain = inner_->terrain();
   const double ground = terrain.height(root.x(), root.y());
-  for (int i = 0; i < grid_ahead_; ++i)
+  const int n = map_size();
+  for (int i = 0; n > 0 && i < grid_ahead_; ++i)
     for (int j = 0; j < grid_across_; ++j) {
       const Eigen::Vector2d p = view_point(root, yaw, i, j);
       obs[i * grid_across_ + j] = terrain.height(p.x(), p.y()) - ground;
     }
-  const int n = grid_ahead_ * grid_across_;
   obs[n] = std::cos(yaw), obs[n + 1] = std::sin(yaw);
   obs[n + 2] = root.y() / (0.5 * terrain.spec().width);
   return obs;

@@ -10,8 +10,9 @@
 //               ahead, 8 m, "seeing roughly two walls ahead"); a wall reads as its height
 //   heading     cos and sin of the character's facing against the course's +x
 //   lateral     the root's y over the course's half width (no position along the course)
-// and is rewarded progress_weight per metre along +x. A fall of the skill's environment ends the
-// episode (a failure), as its time limit or max_seconds do (not failures).
+// (with height_map false, only the last two: seed 000's HLC without its view), and is rewarded
+// progress_weight per metre along +x. A fall of the skill's environment ends the episode (a
+// failure), as its time limit or max_seconds do (not failures).
 #include <deque>
 #include <functional>
 #include <memory>
@@ -26,6 +27,7 @@ struct NavigationConfig {
   double view_ahead = 15.0, view_width = 8.0, view_spacing = 0.5;  // metres
   double progress_weight = 1.0;
   double max_seconds = 30.0;
+  bool height_map = true;    // false: the controller sees no terrain, only its heading and lateral place (seed 000's comparison)
 };
 
 // The low-level skill's policy: its stacked observation frames (oldest first) to its action.
@@ -38,7 +40,7 @@ class NavigationEnv final : public Env {
   // otherwise, or for a config out of range.
   NavigationEnv(std::unique_ptr<CharacterEnv> skill_env, LowLevelPolicy policy, int history, const NavigationConfig& cfg);
 
-  int observation_size() const override { return grid_ahead_ * grid_across_ + 3; }
+  int observation_size() const override { return map_size() + 3; }
   int action_size() const override { return 1; }
   std::vector<ObservationSlice> observation_layout() const override;
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
@@ -54,6 +56,7 @@ class NavigationEnv final : public Env {
   Eigen::Vector2d view_point(const Vec3& root, double yaw, int i, int j) const;
 
  private:
+  int map_size() const { return cfg_.height_map ? grid_ahead_ * grid_across_ : 0; }
   Eigen::VectorXd observe() const;
   Eigen::VectorXd stacked() const;
   void command(double yaw);

@@ -86,6 +86,21 @@ TEST(NavigationEnv, SeesTheStairsAheadAndCommandsTheSkillsHeading) {
   EXPECT_NEAR(env.command_of(2.0), kPi / 3, 1e-12);  // clipped to max_turn
   EXPECT_NEAR(env.command_of(std::nan("")), 0.0, 1e-12);
   EXPECT_THROW((void)env.step(Eigen::VectorXd::Zero(2)), Error);
+  // Without the height map: only the heading and the lateral place, the same values.
+  NavigationConfig blind_cfg = cfg;
+  blind_cfg.height_map = false;
+  auto blind_inner = steered_env(ch, stairs);
+  NavigationEnv blind(std::move(blind_inner), [](const Eigen::VectorXd& x) { return Eigen::VectorXd::Zero(x.size()); }, 1, blind_cfg);
+  const auto blind_layout = blind.observation_layout();
+  ASSERT_EQ(blind_layout.size(), 2u);
+  EXPECT_EQ(blind_layout[0].name, "heading");
+  EXPECT_EQ(blind_layout[1].offset, 2);
+  EXPECT_EQ(blind.observation_size(), 3);
+  std::mt19937_64 same(1);
+  const Eigen::VectorXd seen = blind.reset(same);
+  ASSERT_EQ(seen.size(), 3);
+  EXPECT_NEAR(seen[0], obs[n], 1e-12);
+  EXPECT_NEAR(seen[2], obs[n + 2], 1e-12);
 }
 
 TEST(NavigationEnv, AFallOfTheSkillEndsTheEpisodeAsAFailure) {
