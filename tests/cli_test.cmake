@@ -468,6 +468,16 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   file(READ ${OUT}/crossing.json crossing_json)
   expect_in("${crossing_json}" "\"crossing\": {\"terrain\": \"stairs\", \"step_height\": 0.05, \"finish_x\": 9, \"trials\": 2")
   run_fails("the run's ground is flat" eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --crossing)
+  # A navigation controller over the steered skill (one small iteration), played: it drives the
+  # skill on its course by itself, and plays alone.
+  file(WRITE ${OUT}/hlc.yaml "seed: 1\niterations: 1\nenv: {name: navigation, skill: ${OUT}/imitate_steer/model, terrain: {kind: walls}}\n"
+       "collect: {envs: 1, threads: 1, samples: 8}\npolicy: {hidden: [8]}\nvalue: {hidden: [8]}\n")
+  run_ok(train ${OUT}/hlc.yaml -o ${OUT}/hlc_run)
+  run_ok(export ${OUT}/hlc_run -o ${OUT}/hlc_run --networks-only)
+  run_ok(play ${OUT}/hlc_run --headless --seconds 0.5 --width 64 --height 64 --json ${OUT}/hlc_events.json)
+  expect_in("${LAST_OUT}" "skills: 1 model, its heading commanded by hlc_run every 10 steps")
+  run_fails("is a navigation controller: it plays alone" play ${OUT}/hlc_run ${OUT}/imitate_steer/model --headless --seconds 0.5
+            --json ${OUT}/never.json)
   run_fails("use --method iccgan or gail, not tracking" imitate ${OUT}/jj_mirror.mclip --task heading --method tracking -o ${OUT}/imitate_steer2)
   # A CMU clip retargeted by a map, tracked (seed 003's recipe).
   run_ok(imitate ${CMU} --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking

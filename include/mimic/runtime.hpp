@@ -162,6 +162,11 @@ class Controller {
   double heading() const;                          // the commanded yaw; NaN before a command
   bool steerable(const std::string& skill) const;  // trained with a heading goal; throws for an unknown skill
   double facing() const;                           // where the character faces now (its root's world yaw)
+  // The top of the ground at world (x, y) in the active skill's world (its terrain: a step, a
+  // wall's top, a gap's floor; 0 on flat ground), and half the width of its course (NaN for a
+  // skill that drives no character).
+  double ground_height(double x, double y) const;
+  double course_half_width() const;
 
   const std::string& skill() const;  // the active one's name
   const std::vector<std::shared_ptr<const Skill>>& skills() const;

@@ -1,6 +1,7 @@
 // mimic play MODEL... : the skills of one character in a window (or headless, from a script):
 // keys request skills, push the character, throw cubes; a fallen character is got up by the
-// --recover skills. The session's events go to --json (docs/interactive.md).
+// --recover skills. A navigation controller drives its steered skill on its course by itself.
+// The session's events go to --json (docs/interactive.md).
 #include <mujoco/mujoco.h>
 #include <spdlog/spdlog.h>
 
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "control/navigation.hpp"
 #include "control/play_session.hpp"
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
@@ -128,8 +130,9 @@ CameraSpec camera(View& view, const Controller& c) {
   return cam;
 }
 
-// The text over the picture: the active skill, the one asked for, the rule, each skill's score.
-Overlay overlay(PlaySession& s, const View& view) {
+// The text over the picture: the active skill, the one asked for, the rule, each skill's score,
+// the commanded heading (and the navigation controller commanding it, `driver`, where one does).
+Overlay overlay(PlaySession& s, const View& view, const std::string& driver) {
   const Controller& c = s.controller();
   Overlay o;
   o.left = "time\nskill\nasked for\nrule\n";
@@ -143,7 +146,8 @@ Overlay overlay(PlaySession& s, const View& view) {
   }
   if (!std::isnan(c.heading())) {
     o.left += "heading\n";
-    o.right += fmt::format("{:.0f} deg commanded, {:.0f} deg facing\n", c.heading() * 180.0 / std::numbers::pi, c.facing() * 180.0 / std::numbers::pi);
+    o.right += fmt::format("{:.0f} deg commanded{}, {:.0f} deg facing\n", c.heading() * 180.0 / std::numbers::pi,
+                           driver.empty() ? "" : " by " + driver, c.facing() * 180.0 / std::numbers::pi);
   }
   o.left += "keys";
   o.right += "1-9 skill, arrows steer or turn the camera, p push, b cube, r reset, c camera, v record, space pause";
@@ -164,9 +168,14 @@ void write_ppm(const std::filesystem::path& path, const std::vector<std::uint8_t
   write_file_atomic(path, bytes);
 }
 
-// The skills, each world with cubes thrown only on demand; all must share one world to be drawn.
+// Each skill's world gets cubes thrown only on demand.
+std::vector<std::string> cube_settings(const Args& a) {
+  return {fmt::format("env.projectiles={{enabled: true, every: 0, mass: {}, speed: {}}}", a.cube_mass, a.cube_speed)};
+}
+
+// The skills; all must share one world to be drawn.
 std::vector<std::shared_ptr<const Skill>> load_skills(const Args& a) {
-  const std::vector<std::string> settings = {fmt::format("env.projectiles={{enabled: true, every: 0, mass: {}, speed: {}}}", a.cube_mass, a.cube_speed)};
+  const std::vector<std::string> settings = cube_settings(a);
   std::vector<std::shared_ptr<const Skill>> skills;
   for (const auto& list : {&a.models, &a.recover})
     for (const auto& dir : *list) {
@@ -204,7 +213,16 @@ void run_play(const Args& a) {
   o.rule.time_limit_seconds = a.time_limit;
   o.push_force = a.push_force;
   o.seed = a.seed;
-  std::vector<std::shared_ptr<const Skill>> skills = load_skills(a);
+  // A navigation controller (seed 000's HLC) drives its steered skill on its own course.
+  std::unique_ptr<Navigator> navigator;
+  for (const auto& dir : a.models)
+    if (is_navigation_model(dir) && (a.models.size() > 1 || !a.recover.empty()))
+      throw Error("play: " + dir.string() + " is a navigation controller: it plays alone (its skill on its course), without other models or --recover");
+  if (is_navigation_model(a.models.front())) {
+    spdlog::info("loading {} (a navigation controller) and its skill", a.models.front().string());
+    navigator = std::make_unique<Navigator>(a.models.front(), cube_settings(a));
+  }
+  std::vector<std::shared_ptr<const Skill>> skills = navigator ? std::vector{navigator->skill()} : load_skills(a);
   for (std::size_t i = a.models.size(); i < skills.size(); ++i) o.recovery.push_back(skills[i]->name());
   PlaySession session(skills, o);
   const mjModel* model = session.controller().physics_model();
@@ -218,7 +236,16 @@ void run_play(const Args& a) {
   }
   std::string names;
   for (std::size_t i = 0; i < skills.size(); ++i) names += fmt::format("{}{} {}", i ? ", " : "", i + 1, skills[i]->name());
-  spdlog::info("skills: {}{}", names, o.recovery.empty() ? "" : " (the last " + std::to_string(o.recovery.size()) + " get a fallen character up)");
+  spdlog::info("skills: {}{}{}", names, o.recovery.empty() ? "" : " (the last " + std::to_string(o.recovery.size()) + " get a fallen character up)",
+               navigator ? ", its heading commanded by " + navigator->controller()->name() + " every " +
+                               std::to_string(navigator->config().decision_steps) + " steps"
+                         : "");
+  const std::string driver = navigator ? navigator->controller()->name() : std::string();
+  // One control step: the controller's decision where one is due, then the skill's step.
+  auto advance = [&] {
+    if (navigator) navigator->drive(session.controller());
+    session.step();
+  };
 
   const double dt = session.controller().control_dt();
   const long long total_steps = seconds > 0 ? std::llround(seconds / dt) : -1;
@@ -245,10 +272,10 @@ void run_play(const Args& a) {
     std::unique_ptr<VideoWriter> video = a.output.empty() ? nullptr : std::make_unique<VideoWriter>(a.output, a.width, a.height, 1.0 / dt);
     for (long long i = 0; i < total_steps && !view.quit; ++i) {
       for (const auto& k : due_keys(i)) press(k, session, view);
-      if (!view.paused) session.step();
+      if (!view.paused) advance();
       log_events();
       if (video) {
-        renderer.render(session.controller().physics_data(), camera(view, session.controller()), rgb, nullptr, overlay(session, view));
+        renderer.render(session.controller().physics_data(), camera(view, session.controller()), rgb, nullptr, overlay(session, view, driver));
         video->write(rgb);
       }
     }
@@ -276,10 +303,10 @@ void run_play(const Args& a) {
           spdlog::info("recording into {} (v stops)", record_to.string());
         }
       }
-      if (!view.paused) session.step();
+      if (!view.paused) advance();
       log_events();
       const bool read = video || !a.screenshot.empty();
-      window.draw(session.controller().physics_data(), camera(view, session.controller()), overlay(session, view), read ? &rgb : nullptr);
+      window.draw(session.controller().physics_data(), camera(view, session.controller()), overlay(session, view, driver), read ? &rgb : nullptr);
       if (video) video->write(rgb);
       next_frame += frame;
       std::this_thread::sleep_until(next_frame);
@@ -307,7 +334,9 @@ void run_play(const Args& a) {
 void add_play_command(CLI::App& app) {
   auto a = std::make_shared<Args>();
   CLI::App* play = app.add_subcommand("play", "the skills of one character in a window (or headless from a script): keys request skills, push, throw cubes");
-  play->add_option("models", a->models, "model directories (mimic export): keys 1, 2, ... request them; the first starts")->required()->check(CLI::ExistingDirectory);
+  play->add_option("models", a->models,
+                   "model directories (mimic export): keys 1, 2, ... request them; the first starts. A navigation controller (env: "
+                   "navigation) plays alone, driving its skill on its course")->required()->check(CLI::ExistingDirectory);
   play->add_option("--recover", a->recover, "get-up models: a character that is down is handed to the one whose discriminators score it highest, and back by the rule")
       ->check(CLI::ExistingDirectory);
   play->add_option("--rule", a->rule, "when a requested skill takes over: score (its discriminators), value, immediately")

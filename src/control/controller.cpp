@@ -392,6 +392,16 @@ double Controller::facing() const {
   return character ? heading_angle(character->world().pose().rot[0]) : 0.0;
 }
 
+double Controller::ground_height(double x, double y) const {
+  const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
+  return character ? character->terrain().height(x, y) : 0.0;
+}
+
+double Controller::course_half_width() const {
+  const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
+  return character ? 0.5 * character->terrain().spec().width : std::nan("");
+}
+
 Eigen::Vector3d Controller::root_position() const {
   Env& env = *impl_->envs[impl_->active];
   if (const CharacterEnv* c = character_of(env)) return c->world().root_position();

@@ -9,7 +9,7 @@
 namespace mimic {
 
 NavigationEnv::NavigationEnv(std::unique_ptr<CharacterEnv> skill_env, LowLevelPolicy policy, int history, const NavigationConfig& cfg)
-    : inner_(std::move(skill_env)), policy_(std::move(policy)), history_(history), cfg_(cfg) {
+    : inner_(std::move(skill_env)), policy_(std::move(policy)), history_(history), cfg_(cfg), view_(cfg) {
   if (!inner_ || !policy_) throw Error("navigation: a skill's environment and policy are needed");
   if (!has_heading_goal(*inner_))
     throw Error("navigation: the low-level skill must take a heading (trained with env.goal: heading, `mimic imitate --task heading`)");
@@ -17,44 +17,57 @@ NavigationEnv::NavigationEnv(std::unique_ptr<CharacterEnv> skill_env, LowLevelPo
   if (cfg_.decision_steps < 1 || !(cfg_.max_turn > 0 && cfg_.max_turn <= 180) || !(cfg_.view_ahead > 0) || !(cfg_.view_width > 0) ||
       !(cfg_.view_spacing > 0) || !(cfg_.progress_weight >= 0) || !(cfg_.max_seconds > 0))
     throw Error("navigation: decision_steps >= 1, max_turn in (0, 180], positive view sizes and max_seconds, progress_weight >= 0");
-  grid_ahead_ = static_cast<int>(std::floor(cfg_.view_ahead / cfg_.view_spacing + 1e-9)) + 1;
-  grid_across_ = static_cast<int>(std::floor(cfg_.view_width / cfg_.view_spacing + 1e-9)) + 1;
-  if (grid_ahead_ * grid_across_ > 100'000) throw Error("navigation: the view's grid has more than 100,000 cells; give a larger view_spacing");
+  if (view_.ahead * view_.across > 100'000) throw Error("navigation: the view's grid has more than 100,000 cells; give a larger view_spacing");
   for (const ObservationSlice& part : inner_->observation_layout())
     if (part.name == "goal") goal_offset_ = part.offset;
 }
 
+NavigationView::NavigationView(const NavigationConfig& c) : cfg(c) {
+  if (cfg.view_spacing > 0 && cfg.view_ahead > 0 && cfg.view_width > 0) {  // (NavigationEnv names the error otherwise)
+    ahead = static_cast<int>(std::floor(std::min(cfg.view_ahead / cfg.view_spacing, 1e6) + 1e-9)) + 1;
+    across = static_cast<int>(std::floor(std::min(cfg.view_width / cfg.view_spacing, 1e6) + 1e-9)) + 1;
+  }
+}
+
+Eigen::Vector2d NavigationView::point(const Vec3& root, double yaw, int i, int j) const {
+  const double along = i * cfg.view_spacing, side = -0.5 * cfg.view_width + j * cfg.view_spacing;
+  return {root.x() + std::cos(yaw) * along - std::sin(yaw) * side, root.y() + std::sin(yaw) * along + std::cos(yaw) * side};
+}
+
+Eigen::VectorXd NavigationView::observe(const Vec3& root, double yaw, const std::function<double(double, double)>& ground,
+                                        double half_width) const {
+  Eigen::VectorXd obs(size());
+  const int n = size() - 3;
+  const double here = n > 0 ? ground(root.x(), root.y()) : 0.0;
+  for (int i = 0; n > 0 && i < ahead; ++i)
+    for (int j = 0; j < across; ++j) {
+      const Eigen::Vector2d p = point(root, yaw, i, j);
+      obs[i * across + j] = ground(p.x(), p.y()) - here;
+    }
+  obs[n] = std::cos(yaw), obs[n + 1] = std::sin(yaw);
+  obs[n + 2] = root.y() / half_width;
+  return obs;
+}
+
 std::vector<ObservationSlice> NavigationEnv::observation_layout() const {
-  const int n = map_size();
+  const int n = view_.size() - 3;
   if (n == 0) return {{"heading", 0, 2}, {"lateral", 2, 1}};
   return {{"height_map", 0, n}, {"heading", n, 2}, {"lateral", n + 2, 1}};
 }
 
-double NavigationEnv::command_of(double action) const {
+double NavigationView::command(double action) const {
   const double a = std::isfinite(action) ? std::clamp(action, -1.0, 1.0) : 0.0;
-  return a * cfg_.max_turn * kPi / 180.0;
+  return a * cfg.max_turn * kPi / 180.0;
 }
 
-Eigen::Vector2d NavigationEnv::view_point(const Vec3& root, double yaw, int i, int j) const {
-  const double ahead = i * cfg_.view_spacing, across = -0.5 * cfg_.view_width + j * cfg_.view_spacing;
-  return {root.x() + std::cos(yaw) * ahead - std::sin(yaw) * across, root.y() + std::sin(yaw) * ahead + std::cos(yaw) * across};
-}
+double NavigationEnv::command_of(double action) const { return view_.command(action); }
+
+Eigen::Vector2d NavigationEnv::view_point(const Vec3& root, double yaw, int i, int j) const { return view_.point(root, yaw, i, j); }
 
 Eigen::VectorXd NavigationEnv::observe() const {
-  Eigen::VectorXd obs(observation_size());
-  const Vec3 root = inner_->world().root_position();
-  const double yaw = heading_angle(inner_->world().pose().rot[0]);
   const Terrain& terrain = inner_->terrain();
-  const double ground = terrain.height(root.x(), root.y());
-  const int n = map_size();
-  for (int i = 0; n > 0 && i < grid_ahead_; ++i)
-    for (int j = 0; j < grid_across_; ++j) {
-      const Eigen::Vector2d p = view_point(root, yaw, i, j);
-      obs[i * grid_across_ + j] = terrain.height(p.x(), p.y()) - ground;
-    }
-  obs[n] = std::cos(yaw), obs[n + 1] = std::sin(yaw);
-  obs[n + 2] = root.y() / (0.5 * terrain.spec().width);
-  return obs;
+  return view_.observe(inner_->world().root_position(), heading_angle(inner_->world().pose().rot[0]),
+                       [&terrain](double x, double y) { return terrain.height(x, y); }, 0.5 * terrain.spec().width);
 }
 
 Eigen::VectorXd NavigationEnv::stacked() const {

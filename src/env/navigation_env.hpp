@@ -30,6 +30,21 @@ struct NavigationConfig {
   bool height_map = true;    // false: the controller sees no terrain, only its heading and lateral place (seed 000's comparison)
 };
 
+// The controller's observation (the layout above) for a character whose root is at `root` facing
+// world yaw `yaw`, the ground's height at (x, y) given by `ground` and the course `half_width`
+// wide either side of its axis: what NavigationEnv observes, and what a runtime session driving a
+// skill by a trained controller computes from its own world (control/navigation.hpp).
+struct NavigationView {
+  explicit NavigationView(const NavigationConfig& cfg);
+  int ahead = 0, across = 0;  // grid points along and across the view
+  int size() const { return (cfg.height_map ? ahead * across : 0) + 3; }
+  Eigen::Vector2d point(const Vec3& root, double yaw, int i, int j) const;  // world (x, y) of cell (i along, j across)
+  Eigen::VectorXd observe(const Vec3& root, double yaw, const std::function<double(double, double)>& ground, double half_width) const;
+  // The world yaw (radians) an action commands: a in [-1, 1] (clipped; not finite: 0) times max_turn.
+  double command(double action) const;
+  NavigationConfig cfg;
+};
+
 // The low-level skill's policy: its stacked observation frames (oldest first) to its action.
 using LowLevelPolicy = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
 
@@ -40,7 +55,7 @@ class NavigationEnv final : public Env {
   // otherwise, or for a config out of range.
   NavigationEnv(std::unique_ptr<CharacterEnv> skill_env, LowLevelPolicy policy, int history, const NavigationConfig& cfg);
 
-  int observation_size() const override { return map_size() + 3; }
+  int observation_size() const override { return view_.size(); }
   int action_size() const override { return 1; }
   std::vector<ObservationSlice> observation_layout() const override;
   Eigen::VectorXd reset(std::mt19937_64& rng) override;
@@ -56,7 +71,6 @@ class NavigationEnv final : public Env {
   Eigen::Vector2d view_point(const Vec3& root, double yaw, int i, int j) const;
 
  private:
-  int map_size() const { return cfg_.height_map ? grid_ahead_ * grid_across_ : 0; }
   Eigen::VectorXd observe() const;
   Eigen::VectorXd stacked() const;
   void command(double yaw);
@@ -65,7 +79,7 @@ class NavigationEnv final : public Env {
   LowLevelPolicy policy_;
   int history_;
   NavigationConfig cfg_;
-  int grid_ahead_ = 0, grid_across_ = 0;
+  NavigationView view_;
   int goal_offset_ = -1;  // the "goal" part of the skill's observation
   std::deque<Eigen::VectorXd> frames_;
   double elapsed_ = 0.0;

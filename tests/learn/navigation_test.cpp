@@ -161,3 +161,57 @@ TEST(NavigationEnv, IsBuiltByNameOverARuntimeSkillOnTheCourseGiven) {
   EXPECT_NE(factory_error("{name: navigation, skill: " + steered.string() + ", decision_step: 3}").find("decision_step"), std::string::npos);
   EXPECT_NE(factory_error("{name: navigation, skill: /nonexistent/skill}").find("/nonexistent/skill"), std::string::npos);
 }
+
+TEST(Navigator, DrivesItsSkillOnItsCourseEveryDecision) {
+  MIMIC_NEED_HUMANOID();
+  register_control_envs();
+  const auto steered = test::steered_skill_dir(true);
+  // An untrained controller over the steered skill, on stairs, deciding every 4 steps.
+  const std::string text = "seed: 3\niterations: 1\nenv: {name: navigation, skill: " + steered.string() +
+                           ", terrain: {kind: stairs}, decision_steps: 4, view_ahead: 2, view_width: 1, view_spacing: 0.5, max_turn: 30}\n"
+                           "collect: {envs: 1, threads: 1, samples: 16}\npolicy: {hidden: [8], activation: relu}\n"
+                           "value: {hidden: [8], activation: relu}\n";
+  Trainer trainer(parse_train_config(text, "hlc.yaml"));
+  const auto dir = test::temp_dir("navigator");
+  write_file_atomic(dir / "config.yaml", text);
+  trainer.write_runtime_networks(dir / kRuntimeFileName);
+  EXPECT_TRUE(is_navigation_model(dir));
+  EXPECT_FALSE(is_navigation_model(steered));
+
+  Navigator nav(dir);
+  EXPECT_EQ(nav.config().decision_steps, 4);
+  Controller c({nav.skill()}, 5);
+  EXPECT_TRUE(c.steerable(nav.skill()->name()));
+  // The skill walks on the controller's course: the first step up is 0.15 m high from x = 2 m.
+  EXPECT_NEAR(c.ground_height(2.15, 0.0), 0.15, 1e-12);
+  EXPECT_NEAR(c.ground_height(1.0, 0.0), 0.0, 1e-12);
+  EXPECT_NEAR(c.course_half_width(), 10.0, 1e-12);
+
+  // At the episode's first step the controller decides, from the view of the state now.
+  const NavigationView view(nav.config());
+  ASSERT_EQ(view.size(), 5 * 3 + 3);
+  const Eigen::VectorXd seen =
+      view.observe(c.root_position(), c.facing(), [&c](double x, double y) { return c.ground_height(x, y); }, c.course_half_width());
+  EXPECT_NEAR(seen[4 * 3 + 1], 0.15, 1e-12);  // 2 m straight ahead: the first step
+  const double expected = view.command(nav.controller()->act(seen)[0]);
+  EXPECT_TRUE(nav.drive(c));
+  EXPECT_NEAR(c.heading(), expected, 1e-12);
+  EXPECT_LE(std::abs(c.heading()), kPi / 6 + 1e-12);  // max_turn 30 degrees
+  // Then not until decision_steps steps later.
+  for (int k = 1; k < 4; ++k) {
+    c.step();
+    c.set_heading(1.0);  // a user's command, held until the next decision
+    EXPECT_FALSE(nav.drive(c)) << k;
+    EXPECT_DOUBLE_EQ(c.heading(), 1.0);
+  }
+  c.step();
+  EXPECT_TRUE(nav.drive(c));
+  EXPECT_LE(std::abs(c.heading()), kPi / 6 + 1e-12);
+  // A model of another task is named.
+  try {
+    Navigator wrong(steered);
+    ADD_FAILURE() << "a steered skill loaded as a navigation controller";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a navigation controller"), std::string::npos) << e.what();
+  }
+}
