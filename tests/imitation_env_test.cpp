@@ -238,7 +238,15 @@ TEST(ImitationEnv, ASteeringGoalTurnsByAtMostGoalTurnFromWhereTheCharacterFaces)
   // 0: straight on, where the character faces at the draw.
   cfg.goal_turn = 0.0;
   auto straight = make_imitation_env(ch, nullptr, cfg);
-  straight->reset(start);
+  std::mt19937_64 other(8);
+  straight->reset(other);  // an episode whose target was +x
+  // A start given as a state draws its own target at once (a measurement from a clip's phases
+  // starts this way): straight on from 170 degrees, and its first observation shows it ahead.
+  const Eigen::VectorXd first = straight->reset(start);
+  EXPECT_NEAR(goal_heading(*straight), std::remainder(heading_angle(straight->world().pose().rot[0]), 2 * kPi), 1e-12);
+  EXPECT_NEAR(std::abs(goal_heading(*straight)), 170.0 * kPi / 180.0, 0.05);
+  EXPECT_NEAR(first[first.size() - 2], 1.0, 1e-12);
+  EXPECT_NEAR(first[first.size() - 1], 0.0, 1e-12);
   for (int t = 1; t <= 3; ++t) straight->step(zero);
   EXPECT_NEAR(goal_heading(*straight), heading_angle(straight->world().pose().rot[0]), 1e-12);
   cfg.goal_turn = -1.0;

@@ -255,6 +255,7 @@ Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   world_.set_pd_targets(init.pose);
   if (launcher_) launcher_->reset(world_);
   history_.push_back(world_.link_frames());
+  on_start();
   return observe();
 }
 

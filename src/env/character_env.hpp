@@ -189,6 +189,11 @@ class CharacterEnv : public Env {
   const ProjectileLauncher* projectiles() const { return launcher_.get(); }
   ProjectileLauncher* projectiles() { return launcher_.get(); }
 
+ protected:
+  // Called by reset(InitState) once the start is placed, before its first observation: a task's
+  // own state for the new episode (a goal drawn from where the character faces, say).
+  virtual void on_start() {}
+
  private:
   Eigen::VectorXd observe();
   Termination check_termination() const;

@@ -131,10 +131,18 @@ class ImitationEnv final : public CharacterEnv {
   Eigen::VectorXd reset(std::mt19937_64& rng) override {
     // (No draw that a feature off does not need: runs without it keep their random sequence.)
     if (has_goal()) goal_rng_.seed(rng());
-    Eigen::VectorXd observation = CharacterEnv::reset(rng);
-    if (cfg_.fallen_starts > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng) < cfg_.fallen_starts) {
-      observation = fall(rng);
-      fallen_episode_ = starts();
+    Eigen::VectorXd observation;
+    {
+      struct Sampling {  // the target is drawn once, below, where the start has settled
+        bool& on;
+        explicit Sampling(bool& flag) : on(flag) { on = true; }
+        ~Sampling() { on = false; }
+      } sampling(sampling_);
+      observation = CharacterEnv::reset(rng);
+      if (cfg_.fallen_starts > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng) < cfg_.fallen_starts) {
+        observation = fall(rng);
+        fallen_episode_ = starts();
+      }
     }
     if (has_goal()) {
       draw_goal();  // after the start is placed: a turn is drawn from where the character faces
@@ -155,6 +163,12 @@ class ImitationEnv final : public CharacterEnv {
       observe_goal(r.observation.tail(2));  // "goal" is the last part
     }
     return r;
+  }
+
+  // A start given as a state (a measurement from a clip's phases, a runtime hand-over) draws its
+  // target from where it faces, as a sampled start does; without this it kept the last episode's.
+  void on_start() override {
+    if (has_goal() && !sampling_) draw_goal();
   }
 
   bool has_goal() const { return cfg_.goal == ImitationEnvConfig::Goal::Heading; }
@@ -205,6 +219,7 @@ class ImitationEnv final : public CharacterEnv {
 
   ImitationEnvConfig cfg_;
   long long fallen_episode_ = -1;  // the start (CharacterEnv::starts) that was a fallen one
+  bool sampling_ = false;          // inside reset(rng): its starts draw no target of their own
   double dt_;
   Eigen::VectorXd action_;
   Vec3 before_ = Vec3::Zero();
