@@ -926,6 +926,9 @@ TEST(ImitationEnv, TerrainAndPushKeysReachTheEnv) {
   EXPECT_EQ(stairs.terrain.step_height, 0.2);
   EXPECT_EQ(stairs.observations.height_map_size, 3);
   EXPECT_EQ(made_config(yaml, "{name: tracking}").terrain.kind, TerrainKind::Flat);
+  EXPECT_EQ(stairs.terrain.levels, 0);
+  EXPECT_EQ(made_config(yaml, "{name: imitation, terrain: {kind: stairs, levels: 6}}").terrain.levels, 6);  // a curriculum
+  EXPECT_THROW(made_config(yaml, "{name: imitation, terrain: {kind: stairs, levels: -1}}"), Error);
   // The grid's centre is 2.4 m ahead of the root (at the origin, facing +x): x = 1.9, 2.4 and 2.9 m,
   // on the second, third and fourth steps (each 0.5 m deep from x = 1.0, 0.2 m higher than the
   // last), minus the root's height.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/math.hpp"
 #include "env/character_env.hpp"
 #include "motion/builtin.hpp"
 #include "motion/deepmimic.hpp"
@@ -217,6 +218,60 @@ TEST(Terrain, AWallsCourseRedrawnMovesItsOpeningsInTheModelToo) {
   EXPECT_THROW(Terrain{redrawn_stairs}, Error);
 }
 
+TEST(Terrain, ACurriculumLevelScalesTheCourseInTheModelToo) {
+  // Level k of 4 scales each kind's difficulty by k/4: stairs' steps, gaps' width, slopes' angle,
+  // bumps' height; MuJoCo's ground follows height() at every level.
+  for (TerrainKind kind : {TerrainKind::Stairs, TerrainKind::Gaps, TerrainKind::Slope, TerrainKind::HeightField}) {
+    TerrainSpec s = spec_of(kind);
+    s.levels = 4;
+    Terrain terrain(s);
+    EXPECT_EQ(terrain.level(), 4) << to_string(kind);  // built at the top level
+    const auto w = world_on(terrain);
+    terrain.set_level(1, w->model());
+    mj_forward(w->model(), w->data());
+    EXPECT_EQ(terrain.level(), 1);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> ux(-s.behind - 2, s.ahead + 2), uy(-s.width / 2 - 2, s.width / 2 + 2);
+    double worst = 0;
+    for (int i = 0; i < 300; ++i) {
+      const double x = ux(rng), y = uy(rng);
+      worst = std::max(worst, std::abs(ray_height(*w, x, y) - terrain.height(x, y)));
+    }
+    EXPECT_LT(worst, 1e-3) << to_string(kind) << " at level 1";
+    switch (kind) {
+      case TerrainKind::Stairs:  // 0.15 m steps at the top: 0.0375 m at level 1
+        EXPECT_NEAR(terrain.height(s.start_zone + 2.5 * s.step_depth, 0), 3 * 0.0375, 1e-12);
+        EXPECT_NEAR(terrain.spec().step_height, 0.0375, 1e-12);
+        break;
+      case TerrainKind::Gaps:  // 0.5 m gaps: 0.125 m, so the first platform begins at 2.125 m
+        EXPECT_EQ(terrain.height(s.start_zone + 0.1, 0), terrain.base_height());
+        EXPECT_EQ(terrain.height(s.start_zone + 0.13, 0), 0.0);
+        EXPECT_NEAR(terrain.course_end(), s.start_zone + 10 * 0.125 + 9 * s.gap_spacing, 1e-12);
+        break;
+      case TerrainKind::Slope:  // 10 degrees: 2.5
+        EXPECT_NEAR(terrain.height(s.start_zone + 4.0, 0), 4.0 * std::tan(deg_to_rad(2.5)), 1e-5);
+        break;
+      default: {  // bumps a quarter as high as the same seed's top level
+        const Terrain top(spec_of(kind));
+        for (double x : {3.3, 7.1, 15.4}) EXPECT_NEAR(terrain.height(x, 1.2), top.height(x, 1.2) / 4, 1e-5);
+      }
+    }
+    terrain.set_level(4, w->model());  // back to the course as given
+    const Terrain given(spec_of(kind));
+    for (double x : {2.2, 3.05, 6.6, 12.0}) EXPECT_NEAR(terrain.height(x, 0.4), given.height(x, 0.4), 1e-9) << to_string(kind);
+    EXPECT_THROW(terrain.set_level(0, w->model()), Error);
+    EXPECT_THROW(terrain.set_level(5, w->model()), Error);
+  }
+  // Walls and flat ground have no curriculum; a course without levels takes none.
+  TerrainSpec walls = spec_of(TerrainKind::Walls);
+  walls.levels = 3;
+  EXPECT_THROW(Terrain{walls}, Error);
+  Terrain plain(spec_of(TerrainKind::Stairs));
+  const auto w = world_on(plain);
+  EXPECT_EQ(plain.level(), 0);
+  EXPECT_THROW(plain.set_level(1, w->model()), Error);
+}
+
 TEST(Terrain, HeightFieldIsBumpyAndDeterministicForASeed) {
   const TerrainSpec s = spec_of(TerrainKind::HeightField);
   const Terrain a(s), b(s);
@@ -300,4 +355,60 @@ TEST(TerrainEnv, HeightMapIsTheTerrainAroundTheCharacterInItsHeadingFrame) {
     }
   }
   EXPECT_GT((facing_x - facing_y).cwiseAbs().maxCoeff(), 0.02);  // the bumps differ by direction
+}
+
+TEST(TerrainEnv, ACurriculumGoesUpAfterACrossingAndDownAfterAnEarlyFall) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  CharacterEnvConfig cfg;
+  cfg.terrain = spec_of(TerrainKind::Stairs);
+  cfg.terrain.levels = 3;
+  CharacterEnv env(ch, cfg);
+  EXPECT_EQ(env.terrain_level(), 1);  // every environment starts at the lowest level
+  EXPECT_NEAR(env.terrain().spec().step_height, 0.05, 1e-12);
+  const double end = env.terrain().course_end();
+  const auto standing_at = [&](double x) {
+    InitState s{rest_pose(ch.skeleton, Vec3(x, 0, 1.0)), PoseVelocity{}, 0.0, {}};
+    s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+    return s;
+  };
+  InitState lying = standing_at(0.0);  // face down at the start: a fall at the first step
+  lying.pose.root_pos.z() = 0.1;
+  lying.pose.rot[0] = axis_rotation('y', kPi / 2);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
+  // An episode whose root got 0.5 m past the course's end: a level up at the next start.
+  env.reset(standing_at(end + 0.6));
+  StepResult r = env.step(zero);
+  ASSERT_EQ(r.info.size(), 1u);
+  EXPECT_EQ(r.info[0].first, "terrain_level");
+  EXPECT_EQ(r.info[0].second, 1.0);
+  env.reset(standing_at(0.0));
+  EXPECT_EQ(env.terrain_level(), 2);
+  EXPECT_NEAR(env.terrain().spec().step_height, 0.10, 1e-12);
+  EXPECT_EQ(env.step(zero).info[0].second, 2.0);
+  // Short of the margin, without a fall: the level stays (an episode standing 0.4 m past the end).
+  env.reset(standing_at(end + 0.4));
+  env.step(zero);
+  env.reset(standing_at(end + 0.7));
+  EXPECT_EQ(env.terrain_level(), 2);
+  env.reset(lying);  // after the episode that stood 0.7 m past it
+
+  EXPECT_EQ(env.terrain_level(), 3);
+  EXPECT_NEAR(env.terrain().height(cfg.terrain.start_zone + 0.1, 0), 0.15, 1e-12);
+  // A fall before the course's middle: a level down; the top is not passed, the lowest level kept.
+  ASSERT_EQ(env.step(zero).termination, Termination::Fall);
+  env.reset(lying);
+  EXPECT_EQ(env.terrain_level(), 2);
+  env.step(zero);
+  env.reset(lying);
+  env.step(zero);
+  env.reset(lying);
+  EXPECT_EQ(env.terrain_level(), 1);
+  // Without levels the env reports nothing.
+  CharacterEnvConfig plain;
+  plain.terrain = spec_of(TerrainKind::Stairs);
+  CharacterEnv flat_rule(ch, plain);
+  flat_rule.reset(standing_at(0.0));
+  EXPECT_TRUE(flat_rule.step(zero).info.empty());
+  EXPECT_EQ(flat_rule.terrain_level(), 0);
 }

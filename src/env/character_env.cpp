@@ -108,6 +108,7 @@ CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& c
       obs_(world_, cfg.observations, reference_ != nullptr),
       pusher_(make_pusher(world_, cfg.pushes)) {
   terrain_.install(world_.model());
+  if (cfg.terrain.levels > 0) terrain_.set_level(1, world_.model());
   if (cfg.projectiles.enabled) launcher_ = std::make_unique<ProjectileLauncher>(world_, cfg.projectiles);
   const Skeleton& sk = ch.skeleton;
   if (reference_ && reference_->skeleton.num_joints() != sk.num_joints())
@@ -236,7 +237,17 @@ Eigen::VectorXd CharacterEnv::reset(std::mt19937_64& rng) {
   return reset(s);
 }
 
+void CharacterEnv::update_terrain_level() {
+  if (cfg_.terrain.levels == 0 || starts_ == 0) return;
+  const double end = terrain_.course_end(), middle = (terrain_.spec().start_zone + end) / 2;
+  int level = terrain_.level();
+  if (farthest_x_ >= end + kCurriculumMargin) level = std::min(level + 1, cfg_.terrain.levels);
+  else if (episode_failed_ && farthest_x_ < middle) level = std::max(level - 1, 1);
+  if (level != terrain_.level()) terrain_.set_level(level, world_.model());
+}
+
 Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
+  update_terrain_level();
   ++starts_;
   time_ = init.time;
   elapsed_ = 0.0;
@@ -255,6 +266,8 @@ Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   world_.set_pd_targets(init.pose);
   if (launcher_) launcher_->reset(world_);
   history_.push_back(world_.link_frames());
+  farthest_x_ = world_.root_position().x();
+  episode_failed_ = false;
   on_start();
   return observe();
 }
@@ -351,6 +364,9 @@ StepResult CharacterEnv::step(const Eigen::VectorXd& action) {
   r.observation = observe();
   for (const auto& [name, term] : rewards_) r.reward_terms.emplace_back(name, term(*this));
   r.termination = check_termination();
+  farthest_x_ = std::max(farthest_x_, world_.root_position().x());
+  episode_failed_ = is_failure(r.termination);
+  if (cfg_.terrain.levels > 0) r.info.emplace_back("terrain_level", terrain_.level());
   return r;
 }
 

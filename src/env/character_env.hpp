@@ -172,6 +172,14 @@ class CharacterEnv : public Env {
   long long starts() const { return starts_; }  // episodes begun (reset(InitState) calls), for tasks that mark one
   const CharacterEnvConfig& config() const { return cfg_; }
   const Terrain& terrain() const { return terrain_; }
+  // The terrain's curriculum (config().terrain.levels > 0; seed 002 section 3.1.2, each environment
+  // keeping its own level as legged_gym's terrain curriculum does): the env starts at level 1, and
+  // at each start after an episode it goes a level up where that episode's root got
+  // kCurriculumMargin past the course's end (crossed it), a level down where it ended in a failure
+  // before the middle of the course, and stays otherwise. Steps report the level as the info
+  // "terrain_level".
+  static constexpr double kCurriculumMargin = 0.5;  // m, as the crossing trials'
+  int terrain_level() const { return terrain_.level(); }
   // Does a body whose contact counts as a fall touch the ground now (whether or not that ends
   // episodes)? The robustness test counts frames lying on the ground.
   bool fall_contact() const;
@@ -197,6 +205,7 @@ class CharacterEnv : public Env {
  private:
   Eigen::VectorXd observe();
   Termination check_termination() const;
+  void update_terrain_level();  // at a start: the curriculum's rule on the episode before
   // How far to raise a start out of the floor (CharacterEnvConfig::lift_starts); 0 when off.
   double start_lift(const Pose& pose);
   static constexpr double kStartLiftPad = 1e-3;  // m above the deepest point, as DeepMimic's pad
@@ -219,6 +228,8 @@ class CharacterEnv : public Env {
   int extra_size_ = 0;
   InitSampler init_sampler_;
   long long starts_ = 0;
+  double farthest_x_ = 0.0;           // the episode's farthest root x (the curriculum's rule)
+  bool episode_failed_ = false;       // the episode ended in a failure
   int start_groups_ = 0, start_group_ = -1;
   Pusher pusher_;
   std::unique_ptr<ProjectileLauncher> launcher_;

@@ -26,6 +26,9 @@ inline bool is_failure(Termination t) { return t == Termination::Fall || t == Te
 struct StepResult {
   Eigen::VectorXd observation;
   std::vector<std::pair<std::string, double>> reward_terms;  // name, value; the task sums them
+  // What the task reports besides its reward (a curriculum's level, say): name, value; never
+  // rewarded. The trainer logs each one's mean over an iteration's steps as info_<name>.
+  std::vector<std::pair<std::string, double>> info;
   Termination termination = Termination::None;
   bool done() const { return termination != Termination::None; }
   double reward() const {

@@ -102,6 +102,7 @@ TerrainSpec read_terrain(ConfigSection& parent, const YamlReader& reader) {
   ConfigSection s(reader, parent.child("terrain"), "env.terrain");
   t.kind = terrain_kind_from_string(s.choice("kind", "flat", {"flat", "slope", "gaps", "stairs", "heightfield", "walls"}));
   t.redraw = s.boolean("redraw", t.redraw);
+  t.levels = static_cast<int>(s.integer("levels", t.levels, 0, 1000));
   t.start_zone = s.number("start_zone", t.start_zone, 0, 1e3);
   t.behind = s.number("behind", t.behind, 0, 1e4);
   t.ahead = s.number("ahead", t.ahead, 0, 1e4);

@@ -66,12 +66,20 @@ constexpr double kWallMargin = 0.05;  // m: the least of a wall on each side of 
 
 }  // namespace
 
-Terrain::Terrain(const TerrainSpec& spec) : spec_(spec) {
+Terrain::Terrain(const TerrainSpec& spec) : spec_(spec), top_(spec) {
   const TerrainSpec& s = spec_;
   require(s.start_zone >= 0 && s.behind > 0 && s.ahead > s.start_zone && s.width > 0,
           "need start_zone >= 0, behind > 0, ahead > start_zone and width > 0");
   require(!s.redraw || s.kind == TerrainKind::Walls, std::string("redraw: only a walls course is redrawn, not '") + to_string(s.kind) + "'");
-  switch (s.kind) {
+  require(s.levels >= 0 && s.levels <= 1000, "levels: need 0 (no curriculum) to 1000");
+  require(s.levels == 0 || (s.kind != TerrainKind::Flat && s.kind != TerrainKind::Walls),
+          std::string("levels: a curriculum scales stairs, gaps, slope or heightfield, not '") + to_string(s.kind) + "'");
+  level_ = s.levels;
+  build();
+}
+
+void Terrain::build() {
+  switch (spec_.kind) {
     case TerrainKind::Flat: break;
     case TerrainKind::Slope: build_slope(); break;
     case TerrainKind::Gaps: build_gaps(); break;
@@ -180,9 +188,42 @@ void Terrain::redraw(std::uint64_t seed, mjModel_* m) {
   spec_.seed = seed;
   boxes_.clear();
   build_walls();
+  move_boxes(m);
+}
+
+void Terrain::set_level(int level, mjModel_* m) {
+  if (top_.levels == 0) throw Error("terrain: set_level on a course without a curriculum (levels: 0)");
+  require(level >= 1 && level <= top_.levels, fmt::format("level {} is outside 1..{}", level, top_.levels));
+  const double f = static_cast<double>(level) / top_.levels;
+  spec_ = top_;
+  switch (spec_.kind) {
+    case TerrainKind::Stairs: spec_.step_height *= f; break;
+    case TerrainKind::Gaps: spec_.gap_width *= f; break;
+    case TerrainKind::Slope: spec_.slope_deg *= f; break;
+    case TerrainKind::HeightField: spec_.roughness *= f; break;
+    case TerrainKind::Flat:
+    case TerrainKind::Walls: break;  // refused by the constructor
+  }
+  boxes_.clear();
+  grid_ = Grid{};
+  build();
+  level_ = level;
+  if (!boxes_.empty()) move_boxes(m);
+  if (grid_.z.empty()) return;
+  // The height field: its samples, its vertical extent and where it and the plane beyond stand.
+  const int h = mj_name2id(m, mjOBJ_HFIELD, "terrain"), g = mj_name2id(m, mjOBJ_GEOM, "terrain_hfield");
+  const int plane = mj_name2id(m, mjOBJ_GEOM, "terrain_base");
+  if (h < 0 || g < 0 || plane < 0) throw Error("terrain: the model has no height field geom (build it with Terrain::add_to)");
+  m->hfield_size[4 * h + 2] = std::max(grid_.hi - grid_.lo, 1e-6);
+  m->geom_pos[3 * g + 2] = grid_.lo;
+  m->geom_pos[3 * plane + 2] = base_;
+  install(m);
+}
+
+void Terrain::move_boxes(mjModel_* m) const {
   for (std::size_t k = 0; k < boxes_.size(); ++k) {
     const int g = mj_name2id(m, mjOBJ_GEOM, fmt::format("terrain_box{}", k).c_str());
-    if (g < 0) throw Error("terrain: the model has no wall geom terrain_box" + std::to_string(k) + " (build it with Terrain::add_to)");
+    if (g < 0) throw Error("terrain: the model has no geom terrain_box" + std::to_string(k) + " (build it with Terrain::add_to)");
     const Box& b = boxes_[k];
     const double size[3] = {(b.x1 - b.x0) / 2, (b.y1 - b.y0) / 2, (b.top - base_) / 2};
     const double pos[3] = {(b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2, (b.top + base_) / 2};

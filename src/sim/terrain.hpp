@@ -54,6 +54,10 @@ struct TerrainSpec {
   double wall_spacing = 7.0, wall_height = 1.0, wall_thickness = 0.3, opening_width = 2.0;  // (m)
   std::uint64_t seed = 0;
   bool redraw = false;  // walls only: a new course (the openings' places) at every start (Terrain::redraw)
+  // > 0: a curriculum of this many levels (Terrain::set_level): level k of `levels` scales the
+  // kind's difficulty by k / levels (stairs: step_height; gaps: gap_width; slope: slope_deg;
+  // heightfield: roughness), the spec's value being the top level's. Walls have none.
+  int levels = 0;
 };
 
 class Terrain {
@@ -78,12 +82,20 @@ class Terrain {
   // Every seed gives each wall two parts, so the model's geoms stay the same ones. Throws Error for
   // another kind or a model without the walls.
   void redraw(std::uint64_t seed, mjModel_* m);
+  // Curriculum (spec().levels > 0): rebuilds the course at `level` in 1..levels, in this terrain and
+  // in a model built from add_to's options (boxes moved and resized, a height field's samples
+  // rewritten; the model was built at the top level, so every level fits its geoms). spec() then
+  // holds the level's values. Throws Error without levels or for a level out of range.
+  void set_level(int level, mjModel_* m);
+  int level() const { return level_; }  // 0 without a curriculum; the top level until set_level
 
  private:
   struct Box {
     double x0, x1, y0, y1, top;  // from base_ up to top
   };
+  void build();
   void build_walls();
+  void move_boxes(mjModel_* m) const;
   struct Grid {  // height-field samples: row r at y0 + r * dy, column c at x0 + c * dx
     int nrow = 0, ncol = 0;
     double x0 = 0, y0 = 0, dx = 0, dy = 0, lo = 0, hi = 0;
@@ -98,6 +110,8 @@ class Terrain {
   double grid_height(double x, double y) const;
 
   TerrainSpec spec_;
+  TerrainSpec top_;  // the spec as given: the curriculum's top level
+  int level_ = 0;
   double base_ = 0.0;
   std::vector<Box> boxes_;
   Grid grid_;

@@ -59,6 +59,12 @@ TEST(Collector, MarksEndingsAndBootstrapsTruncationsWithTheLastObservation) {
     EXPECT_NEAR(r.next_value[static_cast<std::size_t>(idx[2])], nets.v({0.3f, 1.f}), 1e-6);
     EXPECT_NEAR(r.next_value[static_cast<std::size_t>(idx[3])], nets.v({0.1f, 1.f}), 1e-6);
   }
+  // What the environment reports besides its reward is summed apart: steps 1, 2, 3, 1 in each.
+  ASSERT_EQ(r.info_sums.size(), 1u);
+  EXPECT_EQ(r.info_sums[0].first, "step");
+  EXPECT_DOUBLE_EQ(r.info_sums[0].second, 2 * 7.0);
+  ASSERT_EQ(r.term_sums.size(), 1u);
+  EXPECT_EQ(r.term_sums[0].first, "toy");
   const EpisodeStats s = c.take_episode_stats();
   EXPECT_EQ(s.returns.size(), 2u);
   EXPECT_EQ(s.lengths, (std::vector<int>{3, 3}));

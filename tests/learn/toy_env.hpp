@@ -1,6 +1,6 @@
 #pragma once
 // A tiny environment for trainer tests: the observation is (step / 10, 1), one action, reward
-// 1 - a^2 (so the best policy outputs 0); episodes end by a time limit or by a "fall" at fixed
+// 1 - a^2 (so the best policy outputs 0), the step reported as the info "step"; episodes end by a time limit or by a "fall" at fixed
 // steps, and can be made to emit a NaN reward.
 #include <algorithm>
 #include <cmath>
@@ -28,6 +28,7 @@ class ToyEnv : public Env {
     StepResult r;
     r.observation = obs();
     r.reward_terms = {{"toy", nan_at_ > 0 && t_ == nan_at_ ? std::nan("") : 1.0 - a[0] * a[0]}};
+    r.info = {{"step", t_}};  // reported, never rewarded
     if (fall_at_ > 0 && t_ == fall_at_) r.termination = Termination::Fall;
     else if (t_ >= limit_) r.termination = Termination::TimeLimit;
     return r;

@@ -9,6 +9,16 @@
 namespace mimic {
 
 namespace {
+
+// Adds each named value to its running sum, a new name making a new sum (in first-seen order).
+void add_to_sums(std::vector<std::pair<std::string, double>>& sums, const std::vector<std::pair<std::string, double>>& values) {
+  for (const auto& [name, v] : values) {
+    auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& p) { return p.first == name; });
+    if (it == sums.end()) sums.emplace_back(name, v);
+    else it->second += v;
+  }
+}
+
 }  // namespace
 
 // One environment's running state between steps.
@@ -184,11 +194,8 @@ Rollout Collector::collect(int steps, int episodes, GaussianPolicy& policy, Valu
       const double rew = res.reward();
       if (!std::isfinite(rew)) throw Error("environment " + std::to_string(e) + ": non-finite reward at step " + std::to_string(s.episode_length + 1));
       r.env_reward[i] = rew;
-      for (const auto& [name, v] : res.reward_terms) {
-        auto it = std::find_if(r.term_sums.begin(), r.term_sums.end(), [&](const auto& p) { return p.first == name; });
-        if (it == r.term_sums.end()) r.term_sums.emplace_back(name, v);
-        else it->second += v;
-      }
+      add_to_sums(r.term_sums, res.reward_terms);
+      add_to_sums(r.info_sums, res.info);
       r.next_obs.insert(r.next_obs.end(), res.observation.data(), res.observation.data() + frame_size_);
       s.frames.push(res.observation);
       s.episode_return += rew;

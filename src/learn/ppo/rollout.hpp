@@ -30,6 +30,8 @@ struct Rollout {
 
   // Sums of each reward term of the environment over the rollout.
   std::vector<std::pair<std::string, double>> term_sums;
+  // Sums of each value the environment reports besides its reward (StepResult::info).
+  std::vector<std::pair<std::string, double>> info_sums;
 
   int size() const { return static_cast<int>(env_reward.size()); }
   Eigen::Map<const Eigen::VectorXd> frame(int i) const;     // current observation (last frame of the input)
