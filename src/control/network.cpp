@@ -110,17 +110,31 @@ Network Network::read(const ArrayTable& t, const std::string& prefix, int input_
     n.gru_ = std::move(gru);
     width = hidden;
   }
-  for (int k = 0;; ++k) {
-    const std::string w = prefix + ".layers." + std::to_string(k) + ".weight", b = prefix + ".layers." + std::to_string(k) + ".bias";
-    if (!t.has(w)) {
-      if (k == 0) t.fail("no array '" + w + "': the network has no layer");
-      break;
+  // Layers "<at>.K.weight" and "<at>.K.bias" from K = 0 while they exist, chained from `width`.
+  auto read_layers = [&](const std::string& at, std::vector<Linear>& layers) {
+    for (int k = 0;; ++k) {
+      const std::string w = at + "." + std::to_string(k) + ".weight", b = at + "." + std::to_string(k) + ".bias";
+      if (!t.has(w)) {
+        if (k == 0) t.fail("no array '" + w + "': the network has no layer");
+        break;
+      }
+      const std::uint32_t out = size_of(w, 0);
+      const std::vector<float>& weights = t.floats(w, {out, width});
+      layers.push_back({transposed(weights, out, width), Eigen::Map<const FloatMatrix>(weights.data(), out, width), vector_of(t.floats(b, {out}))});
+      width = out;
     }
-    const std::uint32_t out = size_of(w, 0);
-    const std::vector<float>& weights = t.floats(w, {out, width});
-    n.layers_.push_back({transposed(weights, out, width), Eigen::Map<const FloatMatrix>(weights.data(), out, width), vector_of(t.floats(b, {out}))});
-    width = out;
+  };
+  if (t.has(prefix + ".encoder_offset")) {
+    if (history > 1) t.fail(prefix + ": an encoder with history " + std::to_string(history) + " (it reads one frame)");
+    Encoder e;
+    e.size = t.count(prefix + ".encoder_size", 1, input_size);
+    e.offset = t.count(prefix + ".encoder_offset", 0, input_size - e.size);
+    width = static_cast<std::uint32_t>(e.size);
+    read_layers(prefix + ".encoder", e.layers);
+    width += static_cast<std::uint32_t>(input_size - e.size);
+    n.encoder_ = std::move(e);
   }
+  read_layers(prefix + ".layers", n.layers_);
   return n;
 }
 
@@ -151,20 +165,33 @@ FloatMatrix Network::forward(const FloatMatrix& x) const {
         }
     }
   }
-  FloatMatrix in = gru_ ? std::move(h) : x, y;
-  for (std::size_t k = 0; k < layers_.size(); ++k) {
-    const Linear& l = layers_[k];
+  FloatMatrix in = gru_ ? std::move(h) : x;
+  if (encoder_) {
+    // The encoder's part through its tanh layers; the first layer reads the rest, then the code.
+    const Encoder& e = *encoder_;
+    const FloatMatrix code = run_layers(e.layers, x.middleCols(e.offset, e.size), Activation::Tanh, true);
+    const Eigen::Index after = input_size_ - e.offset - e.size;
+    in.resize(x.rows(), input_size_ - e.size + code.cols());
+    in << x.leftCols(e.offset), x.rightCols(after), code;
+  }
+  return run_layers(layers_, std::move(in), activation_, false);
+}
+
+FloatMatrix Network::run_layers(const std::vector<Linear>& layers, FloatMatrix in, Activation activation, bool activate_last) {
+  FloatMatrix y;
+  for (std::size_t k = 0; k < layers.size(); ++k) {
+    const Linear& l = layers[k];
     y.resize(in.rows(), l.weight.cols());
     if (in.rows() == 1)
       dense_forward_one(in.data(), static_cast<int>(in.cols()), l.weight_out.data(), l.bias.data(), static_cast<int>(l.weight.cols()), y.data());
     else
       dense_forward(in.data(), static_cast<int>(in.rows()), static_cast<int>(in.cols()), l.weight.data(), l.bias.data(), static_cast<int>(l.weight.cols()),
                     y.data());
-    if (k + 1 < layers_.size()) {
-      if (activation_ == Activation::Relu) y = y.cwiseMax(0.0f);
+    if (k + 1 < layers.size() || activate_last) {
+      if (activation == Activation::Relu) y = y.cwiseMax(0.0f);
       else y = y.array().tanh().matrix();
-      std::swap(in, y);
     }
+    if (k + 1 < layers.size()) std::swap(in, y);
   }
   return y;
 }
@@ -173,6 +200,8 @@ long long Network::parameters() const {
   long long n = 0;
   if (gru_) n += gru_->weight_ih.size() + gru_->weight_hh.size() + gru_->bias_ih.size() + gru_->bias_hh.size();
   for (const Linear& l : layers_) n += l.weight.size() + l.bias.size();  // one layout counted
+  if (encoder_)
+    for (const Linear& l : encoder_->layers) n += l.weight.size() + l.bias.size();
   return n;
 }
 

@@ -39,9 +39,12 @@ class Network {
  public:
   enum class Activation { Relu, Tanh };
   // The arrays under `prefix` ("policy.net", "value.net"): optional "gru.weight_ih_l0",
-  // "gru.weight_hh_l0", "gru.bias_ih_l0", "gru.bias_hh_l0" (history > 1), then "layers.K.weight"
-  // [out, in] and "layers.K.bias" [out] for K = 0, 1, ... Error naming the file and the array
-  // where a shape does not chain from `input_size` or a value is not finite.
+  // "gru.weight_hh_l0", "gru.bias_ih_l0", "gru.bias_hh_l0" (history > 1), or an optional
+  // encoder (seed 002's: "encoder_offset" and "encoder_size", the input columns it reads, and
+  // tanh layers "encoder.K.weight", "encoder.K.bias"; the first layer reads the other inputs, then
+  // its outputs), then "layers.K.weight" [out, in] and "layers.K.bias" [out] for K = 0, 1, ...
+  // Error naming the file and the array where a shape does not chain from `input_size` or a value
+  // is not finite.
   static Network read(const ArrayTable& arrays, const std::string& prefix, int input_size, int history, Activation activation);
 
   int input_size() const { return input_size_; }
@@ -63,10 +66,17 @@ class Network {
     FloatMatrix weight_ih, weight_hh;  // [frame, 3 hidden], [hidden, 3 hidden]; gates r, z, n
     Eigen::VectorXf bias_ih, bias_hh;
   };
+  struct Encoder {
+    int offset = 0, size = 0;
+    std::vector<Linear> layers;  // tanh after each
+  };
   int input_size_ = 0, history_ = 1;
   Activation activation_ = Activation::Relu;
   std::optional<Gru> gru_;
+  std::optional<Encoder> encoder_;
   std::vector<Linear> layers_;
+  // `in` through `layers`, `activation` between them (and after the last where activate_last).
+  static FloatMatrix run_layers(const std::vector<Linear>& layers, FloatMatrix in, Activation activation, bool activate_last);
 };
 
 }  // namespace mimic

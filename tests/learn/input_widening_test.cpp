@@ -80,6 +80,31 @@ TEST(InputWidening, AWidenedNetworkComputesWhatTheSavedOneDidWhateverTheNewInput
   EXPECT_TRUE(first.requires_grad());
 }
 
+TEST(InputWidening, ANetworkGainingAnEncoderOverANewPartComputesWhatTheSavedOneDid) {
+  // A saved policy over 3 inputs; the new one reads them and a new 4-value part through an
+  // encoder, which the first layer sees after the saved inputs: its weights there start at zero.
+  torch::manual_seed(4);
+  NetworkConfig plain;
+  plain.hidden = {6};
+  FeatureNet saved(3, 2, plain);
+  NetworkConfig with_encoder = plain;
+  with_encoder.encoder.input = "height_map";
+  with_encoder.encoder.hidden = {5};
+  resolve_encoder(with_encoder, {{"body", 0, 3}, {"height_map", 3, 4}}, "test");
+  FeatureNet wide(7, 2, with_encoder);
+  auto archive = saved_archive(*saved);
+  load_widened(*wide, archive, {0, 1, 2}, 7);
+  const torch::Tensor x = torch::randn({4, 3});
+  for (const double h : {0.0, 1.5, -4.0}) {
+    const torch::Tensor with_map = torch::cat({x, torch::full({4, 4}, h)}, 1);
+    EXPECT_TRUE(torch::allclose(wide->forward(with_map), saved->forward(x), 1e-6, 1e-6)) << h;
+  }
+  // A saved input that would land in the encoder's part is refused.
+  FeatureNet reads_map(7, 2, plain);
+  auto whole = saved_archive(*reads_map);
+  EXPECT_THROW(load_widened(*wide, whole, {0, 1, 2, 3, 4, 5, 6}, 7), Error);
+}
+
 TEST(InputWidening, OtherShapesAndGrusAreRefusedByName) {
   torch::nn::Sequential saved(torch::nn::Linear(3, 4));
   torch::nn::Sequential other(torch::nn::Linear(5, 6));  // another hidden width: not a widening

@@ -111,3 +111,58 @@ TEST(Networks, LinearScheduleAndSgdWithMomentum) {
   ASSERT_NE(opt, nullptr);
   EXPECT_DOUBLE_EQ(static_cast<torch::optim::SGDOptions&>(opt->param_groups().front().options()).momentum(), 0.8);
 }
+
+TEST(Networks, AnEncoderReadsItsPartAndTheFirstLayerTheRestThenItsCode) {
+  // Seed 002's perceptual encoder: inputs 2..4 of 6 through tanh layers 3 -> 4 -> 2; the first
+  // layer reads inputs 0, 1, 5 and then the code (5 values), computed here by hand.
+  NetworkConfig cfg;
+  cfg.hidden = {8};
+  cfg.activation = "relu";
+  cfg.encoder.input = "terrain";
+  cfg.encoder.hidden = {4, 2};
+  resolve_encoder(cfg, {{"body", 0, 2}, {"terrain", 2, 3}, {"clock", 5, 1}}, "net.yaml");
+  EXPECT_EQ(cfg.encoder.offset, 2);
+  EXPECT_EQ(cfg.encoder.size, 3);
+  torch::manual_seed(2);
+  FeatureNet net(6, 3, cfg);
+  EXPECT_EQ(net->first_layer_width(), 5);
+  EXPECT_EQ(net->first_layer_column(1), 1);
+  EXPECT_EQ(net->first_layer_column(3), -1);
+  EXPECT_EQ(net->first_layer_column(5), 2);
+  std::string shape;
+  EXPECT_EQ(feature_net_parameters(6, 3, cfg, shape), static_cast<double>(parameter_count(*net)));
+  EXPECT_EQ(shape, "6 (3 terrain -> 4 -> 2) -> 8 -> 3");
+  const torch::Tensor x = torch::randn({5, 6});
+  auto linear = [&](const std::string& name, const torch::Tensor& in) {
+    torch::Tensor w, b;
+    for (const auto& p : net->named_parameters()) {
+      if (p.key() == name + ".weight") w = p.value();
+      if (p.key() == name + ".bias") b = p.value();
+    }
+    return torch::matmul(in, w.t()) + b;
+  };
+  const torch::Tensor code = torch::tanh(linear("encoder.1", torch::tanh(linear("encoder.0", x.slice(1, 2, 5)))));
+  const torch::Tensor first = torch::cat({x.slice(1, 0, 2), x.slice(1, 5, 6), code}, 1);
+  const torch::Tensor expected = linear("layers.1", torch::relu(linear("layers.0", first)));
+  EXPECT_TRUE(torch::allclose(net->forward(x), expected, 1e-5, 1e-6));
+  // The encoder's part reaches the output only through the code.
+  torch::Tensor other = x.clone();
+  other.slice(1, 2, 5).fill_(3.0);
+  EXPECT_FALSE(torch::allclose(net->forward(other), net->forward(x)));
+  // Errors: a part the observation lacks (naming the parts), or a network that stacks frames.
+  NetworkConfig missing = cfg;
+  missing.encoder.input = "height_map";
+  try {
+    resolve_encoder(missing, {{"body", 0, 2}, {"clock", 2, 1}}, "net.yaml: 'policy'");
+    FAIL() << "resolved a part the observation lacks";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("net.yaml: 'policy': the encoder's input 'height_map' is not a part of the observation (body, clock)"),
+              std::string::npos) << e.what();
+  }
+  NetworkConfig stacked = cfg;
+  stacked.history = 2;
+  EXPECT_THROW(resolve_encoder(stacked, {{"terrain", 0, 3}}, "net.yaml"), Error);
+  NetworkConfig unresolved;
+  unresolved.encoder.input = "terrain";
+  EXPECT_THROW(FeatureNet(6, 3, unresolved), Error);
+}

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "control/navigation.hpp"
+#include "core/config_section.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
@@ -70,6 +71,31 @@ TEST(TrainConfig, ReadsEverySection) {
   EXPECT_DOUBLE_EQ(c.rewards[0].weight, 0.5);
 }
 
+TEST(TrainConfig, AnEncoderIsReadIntoItsNetwork) {
+  const TrainConfig c = parse_train_config("policy: {encoder: {input: height_map, hidden: [30, 40]}}\n", "run.yaml");
+  EXPECT_EQ(c.policy.net.encoder.input, "height_map");
+  EXPECT_EQ(c.policy.net.encoder.hidden, (std::vector<int>{30, 40}));
+  EXPECT_EQ(c.policy.net.encoder.offset, -1);  // resolved from the environment's layout
+  EXPECT_FALSE(c.value.encoder.enabled());
+  EXPECT_EQ(parse_train_config("value: {encoder: {input: height_map}}\n", "run.yaml").value.encoder.hidden, (std::vector<int>{30, 40, 100}));  // seed 002's
+}
+
+TEST(TrainConfig, ANetworkWithoutAnObservationTakesNoEncoder) {
+  // A discriminator's network reads transitions, not an observation's parts: its section reads no
+  // 'encoder', which is then an unknown key.
+  const YamlReader r("disc.yaml");
+  const YAML::Node node = r.parse("{hidden: [8], encoder: {input: height_map}}", "");
+  ConfigSection s(r, node, "rewards.0.network");
+  const NetworkConfig n = read_network(r, s, NetworkConfig{}, false);
+  EXPECT_FALSE(n.encoder.enabled());
+  try {
+    s.finish();
+    FAIL() << "an encoder was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown key 'rewards.0.network.encoder'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(TrainConfig, DefaultsFollowSeed002) {
   const TrainConfig c = parse_train_config("env: {name: planar_walker}\n", "test");
   EXPECT_EQ(c.policy.net.hidden, (std::vector<int>{64, 64}));
@@ -105,6 +131,9 @@ TEST(TrainConfig, ErrorsNameTheKeyAndTheLine) {
   EXPECT_NE(error_of("- a\n- b\n").find("a training config is a mapping"), std::string::npos);
   EXPECT_NE(error_of("ppo: {clip: [0.2\n").find("not valid YAML"), std::string::npos);
   EXPECT_NE(error_of("rewards: [{weight: 1}]\n").find("missing 'source'"), std::string::npos);
+  // An encoder names its part and reads one frame.
+  EXPECT_NE(error_of("policy: {encoder: {hidden: [4]}}\n").find("'policy.encoder.input' names the observation part"), std::string::npos);
+  EXPECT_NE(error_of("policy: {history: 2, encoder: {input: height_map}}\n").find("'policy.encoder' needs history 1"), std::string::npos);
 }
 
 TEST(TrainConfig, EnvironmentSectionsAreCheckedByTheFactory) {

@@ -627,3 +627,15 @@ TEST(TrainerLearning, WalkerLearnsToMoveForward) {
   EXPECT_GT(late, 5 * returns[0]);
   EXPECT_GT(after, before + 80.0) << "deterministic return before " << before << ", after " << after;
 }
+
+TEST(Trainer, LogsWhatTheEnvironmentReportsBesidesItsRewardAsInfo) {
+  // The toy environment reports its step (1, 2, 3 in 3-step episodes): 2 on the mean over 48 steps,
+  // logged as info_step and kept out of the reward terms.
+  TrainOptions o;
+  o.env_factory = [] { return std::make_unique<test::ToyEnv>(3); };
+  Trainer t(config("collect: {envs: 2, samples: 48}\n"), o);
+  const IterationMetrics m = t.iterate();
+  EXPECT_DOUBLE_EQ(m.get("info_step"), 2.0);
+  EXPECT_TRUE(std::isnan(m.get("term_step")));
+  EXPECT_FALSE(std::isnan(m.get("term_toy")));
+}

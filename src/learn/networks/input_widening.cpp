@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "learn/networks/networks.hpp"
 
 namespace mimic {
 
@@ -78,6 +79,26 @@ void load_widened(torch::nn::Module& module, torch::serialize::InputArchive& arc
       throw Error("parameter '" + key + "' saved as " + c10::str(saved.sizes()) + ", the config's network has " + c10::str(target.sizes()));
     }
   };
+  if (const auto* net = dynamic_cast<const FeatureNetImpl*>(&module); net && net->encoder()) {
+    // A network with an encoder: the saved inputs land in its first layer's input, past the
+    // encoder's part; a saved network without an encoder leaves the encoder as initialised.
+    std::vector<std::int64_t> first;
+    for (const std::int64_t c : kept) {
+      first.push_back(net->first_layer_column(c));
+      if (first.back() < 0)
+        throw Error("the saved network reads the encoder's input '" + net->encoder()->input + "' directly: start the run from scratch");
+    }
+    for (auto& child : module.named_children()) {
+      torch::serialize::InputArchive sub;
+      if (child.key() == "encoder") {
+        if (archive.try_read("encoder", sub)) load_widened(*child.value(), sub, {}, 0);
+      } else {
+        archive.read(child.key(), sub);
+        load_widened(*child.value(), sub, first, net->first_layer_width());
+      }
+    }
+    return;
+  }
   for (auto& p : module.named_parameters(/*recurse=*/false)) copy_into(p.key(), p.value(), false);
   for (auto& b : module.named_buffers(/*recurse=*/false)) copy_into(b.key(), b.value(), true);
   for (auto& child : module.named_children()) {

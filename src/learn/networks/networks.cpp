@@ -49,6 +49,13 @@ double feature_net_parameters(int input_size, int out_size, const NetworkConfig&
     width = g;
     shape += " -> GRU " + std::to_string(cfg.gru_size);
   }
+  if (cfg.encoder.enabled()) {
+    double e = cfg.encoder.size;
+    shape += " (" + std::to_string(cfg.encoder.size) + " " + cfg.encoder.input;
+    for (int h : cfg.encoder.hidden) n += (e + 1) * h, e = h, shape += " -> " + std::to_string(h);
+    shape += ")";
+    width += e - cfg.encoder.size;
+  }
   for (int h : cfg.hidden) n += (width + 1) * h, width = h, shape += " -> " + std::to_string(h);
   shape += " -> " + std::to_string(out_size);
   return n + (width + 1) * out_size;
@@ -89,6 +96,23 @@ FeatureNetImpl::FeatureNetImpl(int input_size, int out_size, const NetworkConfig
   }
   // Hidden gain: sqrt(2) for ReLU, 5/3 for tanh (torch's calculate_gain), or the truncated std.
   const double hidden_scale = cfg.init == "orthogonal" ? (relu_ ? std::sqrt(2.0) : 5.0 / 3.0) : cfg.init_std;
+  if (cfg.encoder.enabled()) {
+    const EncoderConfig& e = cfg.encoder;
+    if (history_ > 1) throw Error("network: an encoder needs history 1");
+    if (e.offset < 0 || e.size < 1 || e.offset + e.size > input_size)
+      throw Error("network: the encoder's input '" + e.input + "' is not resolved within the " + std::to_string(input_size) + " inputs");
+    encoder_cfg_ = e;
+    encoder_ = register_module("encoder", torch::nn::ModuleList());
+    int from = e.size;
+    for (int h : e.hidden) {
+      torch::nn::Linear l(from, h);
+      init_linear(l, cfg.init, cfg.init == "orthogonal" ? 5.0 / 3.0 : cfg.init_std);  // tanh layers
+      encoder_->push_back(l);
+      from = h;
+    }
+    width = input_size - e.size + from;
+  }
+  first_width_ = width;
   layers_ = register_module("layers", torch::nn::ModuleList());
   for (int h : cfg.hidden) {
     torch::nn::Linear l(width, h);
@@ -101,11 +125,24 @@ FeatureNetImpl::FeatureNetImpl(int input_size, int out_size, const NetworkConfig
   layers_->push_back(out);
 }
 
+std::int64_t FeatureNetImpl::first_layer_column(std::int64_t c) const {
+  if (!encoder_cfg_.enabled()) return c;
+  const EncoderConfig& e = encoder_cfg_;
+  if (c < e.offset) return c;
+  return c < e.offset + e.size ? -1 : c - e.size;
+}
+
 torch::Tensor FeatureNetImpl::forward(const torch::Tensor& x) {
   torch::Tensor h = x;
   if (history_ > 1) {
     h = h.view({h.size(0), history_, input_size_ / history_});
     h = std::get<1>(gru_->forward(h)).squeeze(0);  // final hidden state [batch, gru]
+  }
+  if (encoder_cfg_.enabled()) {
+    const EncoderConfig& e = encoder_cfg_;
+    torch::Tensor code = h.narrow(1, e.offset, e.size);
+    for (std::size_t i = 0; i < encoder_->size(); ++i) code = torch::tanh(encoder_[i]->as<torch::nn::Linear>()->forward(code));
+    h = torch::cat({h.narrow(1, 0, e.offset), h.narrow(1, e.offset + e.size, input_size_ - e.offset - e.size), code}, 1);
   }
   const std::size_t n = layers_->size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -113,6 +150,21 @@ torch::Tensor FeatureNetImpl::forward(const torch::Tensor& x) {
     if (i + 1 < n) h = relu_ ? torch::relu(h) : torch::tanh(h);
   }
   return h;
+}
+
+void resolve_encoder(NetworkConfig& cfg, const std::vector<ObservationSlice>& layout, const std::string& where) {
+  EncoderConfig& e = cfg.encoder;
+  if (!e.enabled()) return;
+  if (cfg.history > 1) throw Error(where + ": an encoder needs history 1 (it reads one frame's part)");
+  std::string names;
+  for (const ObservationSlice& s : layout) {
+    if (s.name == e.input) {
+      e.offset = s.offset, e.size = s.size;
+      return;
+    }
+    names += (names.empty() ? "" : ", ") + s.name;
+  }
+  throw Error(where + ": the encoder's input '" + e.input + "' is not a part of the observation (" + names + ")");
 }
 
 GaussianPolicyImpl::GaussianPolicyImpl(int input_size, int action_size, const PolicyConfig& cfg) {

@@ -20,6 +20,13 @@ void add_network(std::vector<NamedArray>& out, const std::string& prefix, const 
   }
 }
 
+// Where an encoder's part lies in the network's input (its layers are "<prefix>.encoder.K.*").
+void add_encoder_place(std::vector<NamedArray>& out, const std::string& prefix, const EncoderConfig& e) {
+  if (!e.enabled()) return;
+  out.push_back(NamedArray::of_scalar(prefix + ".encoder_offset", e.offset));
+  out.push_back(NamedArray::of_scalar(prefix + ".encoder_size", e.size));
+}
+
 std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 std::vector<float> floats_of(const torch::Tensor& t) {
@@ -83,8 +90,10 @@ std::vector<NamedArray> runtime_arrays(const Trainer::Impl& t) {
   }
   out.push_back(NamedArray::of_text("policy.activation", t.cfg.policy.net.activation));
   add_network(out, "policy", *t.learner->policy());
+  add_encoder_place(out, "policy.net", t.cfg.policy.net.encoder);
   out.push_back(NamedArray::of_text("value.activation", t.cfg.value.activation));
   add_network(out, "value", *t.learner->value());
+  add_encoder_place(out, "value.net", t.cfg.value.encoder);
   // The discriminators of the adversarial reward sources, in the config's order (one per
   // behaviour context where each context has its own); none where the run was loaded without them.
   int discriminators = 0;

@@ -242,7 +242,7 @@ std::unique_ptr<RewardSource> make_adversarial_reward_source(const std::string& 
     throw Error(context.config_source + ": " + s.name("mismatched") + " needs " + s.name("experts") + " (one file per behaviour context)");
   {
     ConfigSection n(reader, s.child("network"), s.name("network"));
-    d.net = read_network(n, d.net);
+    d.net = read_network(reader, n, d.net, false);  // a discriminator has no observation layout: no encoder
     n.finish();
   }
   s.finish();

@@ -59,7 +59,7 @@ YAML::Node node_at(YAML::Node n, const std::string& path) {
 constexpr long kMaxLayer = 1 << 16;
 }  // namespace
 
-NetworkConfig read_network(ConfigSection& s, NetworkConfig n) {
+NetworkConfig read_network(const YamlReader& r, ConfigSection& s, NetworkConfig n, bool encoder) {
   n.hidden = s.integers("hidden", n.hidden, 1, kMaxLayer);
   n.activation = s.choice("activation", n.activation, {"tanh", "relu"});
   n.init = s.choice("init", n.init, {"orthogonal", "truncated_normal"});
@@ -68,6 +68,17 @@ NetworkConfig read_network(ConfigSection& s, NetworkConfig n) {
   n.output_scale = s.number("output_scale", n.output_scale, 1e-9, 100);
   n.history = static_cast<int>(s.integer("history", n.history, 1, 64));
   n.gru_size = static_cast<int>(s.integer("gru_size", n.gru_size, 1, kMaxLayer));
+  if (encoder && s.has("encoder")) {
+    const YAML::Node node = s.child("encoder");
+    const std::string quoted = s.name("encoder"), path = quoted.substr(1, quoted.size() - 2);
+    ConfigSection e(r, node, path);
+    n.encoder.input = e.text("input", "");
+    if (n.encoder.input.empty()) r.fail(node, e.name("input") + " names the observation part the encoder reads (height_map, say)");
+    n.encoder.hidden = e.integers("hidden", n.encoder.hidden, 1, kMaxLayer);
+    if (n.encoder.hidden.empty()) r.fail(node, e.name("hidden") + " needs at least one layer");
+    e.finish();
+    if (n.history > 1) r.fail(node, quoted + " needs history 1 (it reads one frame's part)");
+  }
   return n;
 }
 
@@ -93,7 +104,7 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
 
   {
     ConfigSection p(r, top.child("policy"), "policy");
-    c.policy.net = read_network(p, c.policy.net);
+    c.policy.net = read_network(r, p, c.policy.net);
     c.policy.log_std = p.number("log_std", c.policy.log_std, -20, 5);
     c.policy.learn_std = p.boolean("learn_std", c.policy.learn_std);
     if (p.has("log_std_final")) {
@@ -104,7 +115,7 @@ TrainConfig parse_train_config(const std::string& text, const std::string& sourc
   }
   {
     ConfigSection v(r, top.child("value"), "value");
-    c.value = read_network(v, c.value);
+    c.value = read_network(r, v, c.value);
     v.finish();
   }
 

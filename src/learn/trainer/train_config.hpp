@@ -13,6 +13,18 @@
 
 namespace mimic {
 
+// Seed 002's perceptual encoder (section 3.1.2, after Heess et al. 2016): one part of the
+// observation (the height map ahead, say) goes through its own tanh MLP, whose last layer's
+// outputs join the rest of the observation at the network's first layer.
+struct EncoderConfig {
+  std::string input;                  // the observation part's name; empty: no encoder
+  std::vector<int> hidden{30, 40, 100};  // seed 002 Table A.4
+  // Where the part lies in the network's input: resolved from the environment's layout
+  // (resolve_encoder, learn/networks/networks.hpp), not a config key.
+  int offset = -1, size = 0;
+  bool enabled() const { return !input.empty(); }
+};
+
 struct NetworkConfig {
   std::vector<int> hidden{64, 64};
   std::string activation = "tanh";        // tanh | relu
@@ -22,6 +34,7 @@ struct NetworkConfig {
   double output_scale = 1.0;              // orthogonal gain or truncated normal std of the output layer
   int history = 1;                        // frames seen; > 1 embeds the last K frames with a GRU
   int gru_size = 256;                     // seed 004: GRU(256)
+  EncoderConfig encoder;                  // none by default; needs history 1
 };
 
 struct PolicyConfig {
@@ -120,8 +133,10 @@ struct TrainConfig {
 };
 
 class ConfigSection;
+class YamlReader;
 // A network's keys (hidden, activation, init, ...) from one config section; absent keys keep `defaults`.
-NetworkConfig read_network(ConfigSection& s, NetworkConfig defaults);
+// `encoder`: whether the section may hold an encoder (networks over an observation do).
+NetworkConfig read_network(const YamlReader& r, ConfigSection& s, NetworkConfig defaults, bool encoder = true);
 
 // Worker threads for a requested count: 0 means every core.
 int resolve_threads(int requested);

@@ -73,6 +73,12 @@ Trainer::Impl::Impl(TrainConfig c, TrainOptions o) : cfg(std::move(c)), opts(std
     throw Error(cfg.source + ": 'value.history' (" + std::to_string(cfg.value.history) + ") must equal 'policy.history' (" +
                 std::to_string(cfg.policy.net.history) + "): both see the same input");
   {
+    // An encoder's part of the observation, by name (learn/networks/networks.hpp).
+    const std::vector<ObservationSlice> parts = collector->env(0).observation_layout();
+    resolve_encoder(cfg.policy.net, parts, cfg.source + ": 'policy'");
+    resolve_encoder(cfg.value, parts, cfg.source + ": 'value'");
+  }
+  {
     // Before anything large is allocated: both networks trained with Adam (4 bytes a value for
     // weights, gradients and two moments) and a rollout's buffers (per sample: normalised and raw
     // inputs, the next frame, the PPO batch's copy).
@@ -284,6 +290,7 @@ IterationMetrics Trainer::Impl::iterate() {
   m.set("time_inference", times.inference);
   m.set("time_learning", learn_seconds);
   for (const auto& [name, sum] : r.term_sums) m.set("term_" + name, sum / r.size());
+  for (const auto& [name, sum] : r.info_sums) m.set("info_" + name, sum / r.size());
   for (const auto& [name, v] : source_metrics) m.set(name, v);
   if (adaptive_init) update_adaptive_init(m);
   return m;
