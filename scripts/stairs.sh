@@ -3,14 +3,15 @@
 # down), rewarded for walking along the course (the heading goal held on +x) and for the clip's
 # style (its discriminator), with a height map 2 m square ahead of the feet in its input. The
 # staircase is a curriculum (seed 002 section 3.1.2): 20 levels of 1 cm to 20 cm steps, each of
-# the 16 environments going a level up after crossing and down after falling before the landing.
+# the 16 environments going a level up after crossing and down after falling before the landing,
+# and the policy reads the height map through seed 002's perceptual encoder (30-40-100 tanh).
 # Trained into runs/stairs_walk (a run already there is resumed), then measured into
 # docs/data/stairs.json: the share of 20 trials that get over the staircase at each step height,
 # for the fine-tuned walk and for the shipped walk on the same courses.
 #
 #   scripts/stairs.sh               train (or resume) and measure
-#   scripts/stairs.sh fixed         the same fine-tune on 0.10 m steps throughout, no curriculum,
-#                                   into runs/stairs_walk_fixed (then measured into
+#   scripts/stairs.sh fixed         the same fine-tune on 0.10 m steps throughout, no curriculum
+#                                   and no encoder, into runs/stairs_walk_fixed (then measured into
 #                                   docs/data/stairs_fixed.json)
 #   scripts/stairs.sh measure [RUN] measure what RUN (runs/stairs_walk) holds now: its model, or
 #                                   the run's last checkpoint where it was stopped before the end
@@ -23,9 +24,10 @@ mimic=${MIMIC:-build/src/mimic}
 mode=${1:-train}
 run=runs/stairs_walk
 terrain="{kind: stairs, step_height: 0.2, levels: 20}"
+encoder=("--set" "policy.encoder={input: height_map}")
 out=docs/data/stairs.json
 if [ "$mode" = fixed ]; then
-  run=runs/stairs_walk_fixed terrain="{kind: stairs, step_height: 0.1}" out=docs/data/stairs_fixed.json
+  run=runs/stairs_walk_fixed terrain="{kind: stairs, step_height: 0.1}" out=docs/data/stairs_fixed.json encoder=()
 elif [ "$mode" = measure ] && [ -n "${2:-}" ]; then
   run=${2%/}
   [ "$run" = runs/stairs_walk_fixed ] && out=docs/data/stairs_fixed.json
@@ -40,7 +42,7 @@ if [ "$mode" != measure ]; then
   if [ ! -f "$run/config.yaml" ]; then
     "$mimic" imitate "$walk" --task heading --from models/humanoid_walk_iccgan -o "$run" --samples 5000000 \
       --set env.goal_turn=0 --set env.goal_period=1000000 --set env.max_seconds=15 \
-      --set "env.terrain=$terrain" --set "env.observations=[links, link_velocities, height_map]"
+      --set "env.terrain=$terrain" --set "env.observations=[links, link_velocities, height_map]" "${encoder[@]}"
   elif [ ! -f "$run/model/networks.mimic" ]; then
     "$mimic" imitate --resume -o "$run"
   fi
