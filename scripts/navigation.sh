@@ -2,8 +2,8 @@
 # Seed 000's high-level controller over the steered walk (docs/tasks.md): trained on walls courses
 # redrawn every episode, with its height map (configs/navigation_walls.yaml) and without
 # (configs/navigation_walls_blind.yaml), each into runs/ (a run already there is resumed), then
-# measured on the same 20 courses (the same --seed gives the same starts and walls) into
-# docs/data/:
+# measured on the same 20 courses (eval --paired: episode k is the same start and walls for each)
+# into docs/data/:
 #   navigation.json           the HLC with its view of the course
 #   navigation_blind.json     the HLC without it
 #   navigation_straight.json  a fixed "straight on" command (--fixed-action 0) in its place
@@ -32,7 +32,15 @@ if [ "${1:-}" != measure ]; then
   wait $blind || { echo "navigation.sh: training failed; see runs/navigation_walls_blind.log" >&2; exit 1; }
 fi
 mkdir -p docs/data
-"$mimic" eval runs/navigation_walls --episodes 20 --json docs/data/navigation.json
-"$mimic" eval runs/navigation_walls_blind --episodes 20 --json docs/data/navigation_blind.json
-"$mimic" eval runs/navigation_walls --episodes 20 --fixed-action 0 --json docs/data/navigation_straight.json
+# --paired: episode k is the same course for all three, so they compare course by course.
+"$mimic" eval runs/navigation_walls --episodes 20 --paired --json docs/data/navigation.json
+"$mimic" eval runs/navigation_walls_blind --episodes 20 --paired --json docs/data/navigation_blind.json
+"$mimic" eval runs/navigation_walls --episodes 20 --paired --fixed-action 0 --json docs/data/navigation_straight.json
+python3 - <<'PY'
+import json
+r = {k: json.load(open(f"docs/data/{k}.json"))["returns"] for k in ("navigation", "navigation_blind", "navigation_straight")}
+for k in ("navigation", "navigation_blind"):
+    wins = sum(a > b for a, b in zip(r[k], r["navigation_straight"]))
+    print(f"{k}: further than straight on in {wins} of {len(r[k])} courses")
+PY
 echo "wrote docs/data/navigation.json, navigation_blind.json and navigation_straight.json"

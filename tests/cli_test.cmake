@@ -204,6 +204,13 @@ run_ok(eval ${OUT}/bc_run --episodes 2 --fixed-action 0,0,0,0,0,0 --json ${OUT}/
 expect_in("${LAST_OUT}" "a baseline: every action the one given")
 file(READ ${OUT}/bc_fixed.json bc_fixed_json)
 expect_in("${bc_fixed_json}" "\"episodes\": 2, \"actions\": \"fixed 0,0,0,0,0,0\", \"return_mean\": ")
+# Paired: one environment an episode, the returns listed in episode order.
+run_ok(eval ${OUT}/bc_run --episodes 3 --paired --fixed-action 0,0,0,0,0,0 --json ${OUT}/bc_paired.json)
+file(READ ${OUT}/bc_paired.json bc_paired_json)
+expect_in("${bc_paired_json}" "\"episodes\": 3, \"actions\": \"fixed 0,0,0,0,0,0\", \"return_mean\": ")
+if(NOT bc_paired_json MATCHES "\"paired\": true, \"returns\": \\[[^],]+, [^],]+, [^],]+\\]")
+  message(FATAL_ERROR "eval --paired: no list of 3 returns in ${bc_paired_json}")
+endif()
 run_fails("the skill acts with 6" eval ${OUT}/bc_run --episodes 1 --fixed-action 0)
 run_fails("--fixed-action measures the episodes only" eval ${OUT}/bc_run --episodes 1 --fixed-action 0,0,0,0,0,0 --latency)
 run_fails("not a training run" eval ${OUT} --episodes 2)

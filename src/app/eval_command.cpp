@@ -222,6 +222,7 @@ void evaluate(const EvalArgs& args) {
   const std::shared_ptr<const Skill> skill = load_skill(args.run, networks.bytes, networks.source, "", args.settings);
   // The episodes training would have evaluated (control/episodes.hpp).
   EpisodeOptions episodes = training_episodes(args.run);
+  if (args.paired) episodes.slots = args.episodes;
   episodes.episodes = args.episodes, episodes.seed = args.seed, episodes.deterministic = !args.stochastic;
   const bool fixed = !args.fixed_action.empty();
   if (fixed) {
@@ -233,7 +234,7 @@ void evaluate(const EvalArgs& args) {
   }
   std::mt19937_64 noise(args.seed);
   EpisodeStats s;
-  (void)run_episodes(*skill, episodes, noise, s);
+  const Rollout steps = run_episodes(*skill, episodes, noise, s);
   const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
   // Episodes ended by a failure: a fall, or a tracking env's max_drift (the JSON's key predates it).
   const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
@@ -248,6 +249,15 @@ void evaluate(const EvalArgs& args) {
                                  "\"return_std\": {}, \"episode_length\": {}, \"fall_rate\": {}",
                                  json_string(args.run.string()), settings, s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
                                  mean_of(lengths), fall_rate);
+  if (args.paired) {  // one episode an environment: its steps' rewards are its return, in episode order
+    std::vector<double> returns;
+    for (const std::vector<int>& idx : steps.env_steps) {
+      double sum = 0.0;
+      for (const int i : idx) sum += steps.env_reward[static_cast<std::size_t>(i)];
+      returns.push_back(sum);
+    }
+    json += ", \"paired\": true, \"returns\": " + json_numbers(returns);
+  }
   if (fixed) {
     spdlog::info("  (a baseline: every action the one given, not the policy's; the other measurements are the policy's and are not made)");
     if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
@@ -370,8 +380,11 @@ void add_eval_command(CLI::App& app) {
   ev->add_option("--crossing-seconds", args->crossing_seconds, "the longest trial (s)")->capture_default_str()->check(CLI::PositiveNumber);
   ev->add_option("--fixed-action", args->fixed_action,
                  "a baseline: the episodes (only they) with this action in place of the policy's, e.g. 0 for a navigation "
-                 "controller's straight on; the same --seed gives the same starts and courses")
+                 "controller's straight on; with --paired, episode k has the same start and course as the policy's")
       ->delimiter(',');
+  ev->add_flag("--paired", args->paired,
+              "each episode in its own environment, so that episode k starts the same (on the same course) whatever the policy does; "
+              "the JSON lists the returns in episode order, to compare two evaluations episode by episode");
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");
   ev->add_option("--seed", args->seed, "random seed of the episodes")->capture_default_str();
