@@ -103,6 +103,7 @@ StepResult NavigationEnv::step(const Eigen::VectorXd& action) {
     frames_.push_back(std::move(r.observation));
     elapsed_ += dt;
     if (r.done()) out.termination = is_failure(r.termination) ? Termination::Fall : Termination::TimeLimit;
+    else if (std::abs(inner_->world().root_position().y()) > inner_->terrain().spec().width / 2) out.termination = Termination::Fall;  // off the course
     else if (elapsed_ >= cfg_.max_seconds - 1e-9) out.termination = Termination::TimeLimit;
   }
   out.reward_terms.emplace_back("progress", cfg_.progress_weight * (inner_->world().root_position().x() - x0));

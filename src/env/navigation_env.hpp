@@ -12,7 +12,9 @@
 //   lateral     the root's y over the course's half width (no position along the course)
 // (with height_map false, only the last two: seed 000's HLC without its view), and is rewarded
 // progress_weight per metre along +x. A fall of the skill's environment ends the episode (a
-// failure), as its time limit or max_seconds do (not failures).
+// failure), and so does leaving the course sideways (the root beyond its half width: seed 000's
+// track is a corridor, and around its walls is no way through); its time limit or max_seconds
+// end it too (not failures).
 #include <deque>
 #include <functional>
 #include <memory>

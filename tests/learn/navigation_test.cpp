@@ -123,6 +123,31 @@ TEST(NavigationEnv, AFallOfTheSkillEndsTheEpisodeAsAFailure) {
   EXPECT_THROW(NavigationEnv(make_imitation_env(ch, nullptr, plain), [](const Eigen::VectorXd& x) { return x; }, 1, cfg), Error);
 }
 
+TEST(NavigationEnv, LeavingTheCourseSidewaysEndsTheEpisodeAsAFailure) {
+  // The humanoid standing (zero actions hold it) 1.5 m and 2.5 m to the side of a course 4 m wide:
+  // inside, the first decision goes on; outside, it ends the episode as a failure.
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  TerrainSpec course;
+  course.kind = TerrainKind::Stairs;
+  course.width = 4.0;
+  for (const double y : {1.5, 2.5}) {
+    auto inner = steered_env(ch, course);
+    inner->set_init_sampler([&ch, y](std::mt19937_64&) {
+      InitState s{rest_pose(ch.skeleton, Vec3(0, y, ch.rest_root_height() + 1e-3)), PoseVelocity{}, 0.0, {}};
+      s.velocity.joint_ang.assign(ch.skeleton.joints.size(), Vec3::Zero());
+      return s;
+    });
+    const int actions = inner->action_size();
+    NavigationEnv env(std::move(inner), [actions](const Eigen::VectorXd&) { return Eigen::VectorXd::Zero(actions); }, 1, NavigationConfig{});
+    std::mt19937_64 rng(3);
+    env.reset(rng);
+    const StepResult r = env.step(Eigen::VectorXd::Zero(1));
+    if (y < 2.0) EXPECT_FALSE(r.done()) << "inside the course";
+    else EXPECT_EQ(r.termination, Termination::Fall) << "off the course";
+  }
+}
+
 namespace {
 
 std::string factory_error(const std::string& yaml) {
