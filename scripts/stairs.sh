@@ -3,8 +3,9 @@
 # down), rewarded for walking along the course (the heading goal held on +x) and for the clip's
 # style (its discriminator), with a height map 2 m square ahead of the feet in its input. The
 # staircase is a curriculum (seed 002 section 3.1.2): 20 levels of 1 cm to 20 cm steps, each of
-# the 16 environments going a level up after crossing and down after falling before the landing,
-# and the policy reads the height map through seed 002's perceptual encoder (30-40-100 tanh).
+# the 16 environments going a level up after crossing and down after falling before the course's
+# middle (on the landing), and the policy reads the height map through seed 002's perceptual
+# encoder (30-40-100 tanh).
 # Trained into runs/stairs_walk (a run already there is resumed), then measured into
 # docs/data/stairs.json: the share of 20 trials that get over the staircase at each step height,
 # for the fine-tuned walk and for the shipped walk on the same courses.
