@@ -3,10 +3,10 @@
 #   steer_walk.mp4   the steered walk (runs/steer_walk/model, scripts/steering.sh) commanded by the
 #                    arrow keys: 90 degrees left, then right twice, then left again
 #   navigation.mp4   the high-level controller (runs/navigation_walls, scripts/navigation.sh)
-#                    driving the steered walk on three walls courses (a reset, r, every 9 s)
-#   stairs_0.10.mp4, stairs_0.20.mp4
+#                    driving the steered walk on four walls courses (a reset, r, every 10 s)
+#   stairs_0.02.mp4, stairs_0.10.mp4
 #                    the stairs fine-tune (runs/stairs_walk, scripts/stairs.sh) walking along a
-#                    staircase of 0.10 m and of 0.20 m steps (its curriculum's top level)
+#                    staircase of 0.02 m steps and of 0.10 m ones (seed 000's)
 # A run stopped before its end is filmed from its last checkpoint (its networks exported first).
 #
 #   scripts/task_videos.sh [steer_walk|navigation|stairs]...   (default: all three)
@@ -36,14 +36,14 @@ steer_walk() {
     -o docs/videos/steer_walk.mp4 --json "$tmp/steer.json"
 }
 
-navigation() {  # a new course 9 s and 18 s in (r), whether or not the walk is down by then
-  printf '%s\n' "9.0 r" "18.0 r" > "$tmp/navigation.script"
-  "$mimic" play "$(model_of runs/navigation_walls)" --headless --script "$tmp/navigation.script" --seconds 27 \
+navigation() {  # a new course every 10 s (r), whether or not the walk is down by then
+  printf '%s\n' "10.0 r" "20.0 r" "30.0 r" > "$tmp/navigation.script"
+  "$mimic" play "$(model_of runs/navigation_walls)" --headless --script "$tmp/navigation.script" --seconds 40 \
     -o docs/videos/navigation.mp4 --json "$tmp/navigation.json"
 }
 
 stairs() {  # mimic render films a run (its last checkpoint) or a model
-  for h in 0.10 0.20; do
+  for h in 0.02 0.10; do
     "$mimic" render runs/stairs_walk --set "env.terrain={kind: stairs, step_height: $h}" --seconds 12 -o "docs/videos/stairs_$h.mp4"
   done
 }
