@@ -475,7 +475,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   file(READ ${OUT}/crossing.json crossing_json)
   expect_in("${crossing_json}" "\"crossing\": {\"terrain\": \"stairs\", \"step_height\": 0.05, \"finish_x\": 9, \"trials\": 2")
   run_fails("the run's ground is flat" eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --crossing)
-  # A curriculum course is crossed at its top level (its first level would have 0.05 m steps).
+  # A skill acts on a curriculum course at its top level (its first level would have 0.05 m steps).
   run_ok(eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --crossing --crossing-trials 1 --crossing-seconds 1
          --set "env.terrain={kind: stairs, step_height: 0.2, levels: 4}" --json ${OUT}/crossing_levels.json)
   file(READ ${OUT}/crossing_levels.json crossing_levels_json)

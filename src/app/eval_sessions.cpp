@@ -146,10 +146,10 @@ std::string crossing(const EvalArgs& args) {
   if (!probed) throw Error(args.run.string() + ": --crossing needs a character environment");
   if (probed->terrain().spec().kind == TerrainKind::Flat)
     throw Error(args.run.string() + ": --crossing: the run's ground is flat; give a course, e.g. --set \"env.terrain={kind: stairs, step_height: 0.1}\"");
-  const std::size_t given = settings.size();
-  if (has_heading_goal(*probed)) settings.push_back("env.goal_period=1000000");  // the command is the only target
-  if (probed->terrain().spec().levels > 0) settings.push_back("env.terrain.levels=0");  // a curriculum's top level, held
-  if (settings.size() > given) skill = run_skill(args.run, settings);
+  if (has_heading_goal(*probed)) {  // the command is the only target
+    settings.push_back("env.goal_period=1000000");
+    skill = run_skill(args.run, settings);
+  }
   const std::unique_ptr<Env> env = make_skill_env(*skill);
   CharacterEnv* character = character_of(*env);
   const TerrainSpec& course = character->terrain().spec();

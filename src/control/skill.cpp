@@ -139,6 +139,10 @@ std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, 
   const YAML::Node root =
       reader.parse(override_config(read_text_file(config, kMaxYamlBytes), config.string(), env_settings), "invalid YAML");
   if (!root.IsMap() || !root["env"].IsDefined()) throw Error(config.string() + ": no 'env' section: the environment the skill acts in");
+  // A skill acts on its course as configured: a training curriculum's top level, held
+  // (env.terrain.levels, sim/terrain.hpp), in play, videos and every measurement.
+  YAML::Node env = root["env"];
+  if (env.IsMap() && env["terrain"].IsMap() && env["terrain"]["levels"].IsDefined()) env["terrain"]["levels"] = 0;
   return skill_in(make_env_factory(root["env"], reader), networks_bytes, networks, skill_name, model_dir, config.string() + "'s environment",
                   " (a config.yaml that is not the one the networks were exported with?)");
 }
