@@ -222,7 +222,6 @@ void evaluate(const EvalArgs& args) {
   const std::shared_ptr<const Skill> skill = load_skill(args.run, networks.bytes, networks.source, "", args.settings);
   // The episodes training would have evaluated (control/episodes.hpp).
   EpisodeOptions episodes = training_episodes(args.run);
-  if (args.paired) episodes.slots = args.episodes;
   episodes.episodes = args.episodes, episodes.seed = args.seed, episodes.deterministic = !args.stochastic;
   const bool fixed = !args.fixed_action.empty();
   if (fixed) {
@@ -234,7 +233,27 @@ void evaluate(const EvalArgs& args) {
   }
   std::mt19937_64 noise(args.seed);
   EpisodeStats s;
-  const Rollout steps = run_episodes(*skill, episodes, noise, s);
+  // Paired: each episode in an environment of its own, in groups of at most kPairedGroup side by
+  // side (group g seeded seed + g), so that episode k's start is the same whatever the policy does
+  // and memory stays bounded however many episodes are asked for. Its return is the sum of its
+  // environment's rewards, listed in episode order.
+  std::vector<double> paired_returns;
+  if (args.paired) {
+    constexpr int kPairedGroup = 32;
+    for (int first = 0, group = 0; first < args.episodes; first += kPairedGroup, ++group) {
+      EpisodeOptions o = episodes;
+      o.episodes = o.slots = std::min(kPairedGroup, args.episodes - first);
+      o.seed = args.seed + static_cast<std::uint64_t>(group);
+      const Rollout steps = run_episodes(*skill, o, noise, s);
+      for (const std::vector<int>& idx : steps.env_steps) {
+        double sum = 0.0;
+        for (const int i : idx) sum += steps.env_reward[static_cast<std::size_t>(i)];
+        paired_returns.push_back(sum);
+      }
+    }
+  } else {
+    (void)run_episodes(*skill, episodes, noise, s);
+  }
   const std::vector<double> lengths(s.lengths.begin(), s.lengths.end());
   // Episodes ended by a failure: a fall, or a tracking env's max_drift (the JSON's key predates it).
   const double fall_rate = static_cast<double>(s.failures) / static_cast<double>(s.returns.size());
@@ -249,15 +268,7 @@ void evaluate(const EvalArgs& args) {
                                  "\"return_std\": {}, \"episode_length\": {}, \"fall_rate\": {}",
                                  json_string(args.run.string()), settings, s.returns.size(), actions, mean_of(s.returns), std_of(s.returns),
                                  mean_of(lengths), fall_rate);
-  if (args.paired) {  // one episode an environment: its steps' rewards are its return, in episode order
-    std::vector<double> returns;
-    for (const std::vector<int>& idx : steps.env_steps) {
-      double sum = 0.0;
-      for (const int i : idx) sum += steps.env_reward[static_cast<std::size_t>(i)];
-      returns.push_back(sum);
-    }
-    json += ", \"paired\": true, \"returns\": " + json_numbers(returns);
-  }
+  if (args.paired) json += ", \"paired\": true, \"returns\": " + json_numbers(paired_returns);
   if (fixed) {
     spdlog::info("  (a baseline: every action the one given, not the policy's; the other measurements are the policy's and are not made)");
     if (!args.json.empty()) write_file_atomic(args.json, json + "}\n");
@@ -383,7 +394,8 @@ void add_eval_command(CLI::App& app) {
                  "controller's straight on; with --paired, episode k has the same start and course as the policy's")
       ->delimiter(',');
   ev->add_flag("--paired", args->paired,
-              "each episode in its own environment, so that episode k starts the same (on the same course) whatever the policy does; "
+              "each episode in its own environment, so that episode k starts the same (on the same course) whatever the policy does, "
+              "for the same --episodes and --seed; "
               "the JSON lists the returns in episode order, to compare two evaluations episode by episode");
   ev->add_flag("--latency", args->latency, "time one policy forward pass at batch 1 (seed 004 Table 4)");
   ev->add_flag("--stochastic", args->stochastic, "sample actions in the episodes (default: the policy's mean)");

@@ -35,9 +35,10 @@ struct EvalArgs {
   int crossing_trials = 20;
   double crossing_seconds = 20.0;
   std::vector<double> fixed_action;  // a baseline: the episodes with this action in place of the policy's
-  // Each episode in its own environment (not the training's collect.envs taking turns): episode k
-  // starts the same, on the same course, whatever the policy does, and its return is reported in
-  // episode order, so two evaluations compare episode by episode.
+  // Each episode in its own environment (not the training's collect.envs taking turns; at most 32
+  // side by side, a group at a time): for the same --episodes and --seed, episode k starts the
+  // same, on the same course, whatever the policy does, and its return is reported in episode
+  // order, so two evaluations compare episode by episode.
   bool paired = false;
 };
 
