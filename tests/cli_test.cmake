@@ -466,10 +466,18 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   endif()
   run_fails("excludes" imitate --resume --method gail -o ${OUT}/imitate_run)
   # Steering (--task heading) from the model above: the goal mixed in, the input widened, the
-  # response to a commanded turn measured.
+  # response to a commanded turn measured. (With another skill's clip to start a share of the
+  # episodes from, copied into the run and its model; the model acts from its own starts.)
   run_ok(imitate ${OUT}/jj_mirror.mclip --task heading --from ${OUT}/imitated_model -o ${OUT}/imitate_steer --samples 1 --trials 1
-         --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2)
+         --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2
+         --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   file(READ ${OUT}/imitate_steer/config.yaml imitate_steer_config)
+  expect_in("${imitate_steer_config}" "start_clips: [start_clips/humanoid3d_walk.mclip]")
+  if(NOT EXISTS ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)
+    message(FATAL_ERROR "mimic imitate --start-clips: the model has no start_clips/humanoid3d_walk.mclip")
+  endif()
+  # A skill acts from its own starts: the model loads, and everything below uses it, without them.
+  file(REMOVE_RECURSE ${OUT}/imitate_steer/model/start_clips)
   expect_in("${imitate_steer_config}" "goal: heading")
   expect_in("${imitate_steer_config}" "rewards.1={source: env, weight: 0.5} policy.learn_std=false policy.log_std=-1.66")
   run_ok(eval ${OUT}/imitate_steer/model --episodes 1 --trials 1 --steering 90 --steering-trials 2 --json ${OUT}/steer_eval.json)

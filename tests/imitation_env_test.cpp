@@ -707,6 +707,73 @@ TEST(ImitationEnv, MocapStartsOnANonCyclicClipEndWithTheClip) {
   EXPECT_EQ(r.termination, Termination::TimeLimit);
 }
 
+// Start clips (switching: another skill's motion): a share of the episodes starts from them, the
+// rest from the skill's own clips; such an episode on a one-shot skill lasts one whole own clip.
+TEST(ImitationEnv, StartClipsStartTheirShareOfEpisodesFromOtherMotion) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  ImitationEnvConfig cfg;
+  cfg.init_noise = 0.0;
+  cfg.start_clip_share = 0.25;
+  const auto own = held_elbow(ch, 0.3, 1.0);  // non-cyclic, 1 s
+  const std::vector<std::shared_ptr<const Clip>> other{held_elbow(ch, 1.2, 2.0)};
+  auto env = make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{own}, cfg, other);
+  std::mt19937_64 rng(11);
+  int from_other = 0, from_own = 0;
+  const int starts = 400;
+  for (int i = 0; i < starts; ++i) {
+    env->reset(rng);
+    const double angle = elbow_angle(*env);
+    if (std::abs(angle - 1.2) < 1e-6) ++from_other;
+    if (std::abs(angle - 0.3) < 1e-6) ++from_own;
+  }
+  EXPECT_EQ(from_other + from_own, starts);
+  EXPECT_NEAR(from_other / double(starts), 0.25, 0.065);  // binomial sd 0.022
+  // All from the other motion: each episode runs the own clip's whole second (30 control steps),
+  // wherever in the other clip it started, and ends as the clip does, not as a failure.
+  cfg.start_clip_share = 1.0;
+  auto all = make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{own}, cfg, other);
+  StepResult r;
+  for (int i = 0; i < 3; ++i) {
+    all->reset(rng);
+    EXPECT_NEAR(elbow_angle(*all), 1.2, 1e-6);
+    EXPECT_EQ(run_zero_actions(*all, r), 30);
+    EXPECT_EQ(r.termination, Termination::ClipEnd);
+  }
+  // A share without start clips, a start clip that does not fit, a share outside [0, 1].
+  EXPECT_THROW(make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{own}, cfg), Error);
+  Clip unfit = *held_elbow(ch, 1.2, 2.0);
+  unfit.skeleton.joints.pop_back();
+  for (Pose& p : unfit.frames) p.rot.pop_back();
+  EXPECT_THROW(make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{own}, cfg, {std::make_shared<const Clip>(unfit)}), Error);
+  cfg.start_clip_share = 1.5;
+  EXPECT_THROW(make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{own}, cfg, other), Error);
+}
+
+TEST(ImitationEnv, TheStartClipKeysReachTheEnv) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader r("test.yaml");
+  const std::string walk = "clip: deepmimic/motions/humanoid3d_walk.txt";
+  auto error = [&](const std::string& env_yaml) { return factory_error(r, env_yaml); };
+  EXPECT_EQ(error("{name: imitation, " + walk + ", start_clips: [deepmimic/motions/humanoid3d_run.txt]}"), "no error");
+  EXPECT_NE(error("{name: imitation, " + walk + ", start_clip_share: 0.5}").find("'env.start_clip_share': no 'env.start_clips'"),
+            std::string::npos);
+  EXPECT_NE(error("{name: imitation, " + walk + ", start_clips: [/nonexistent/run.txt]}").find("/nonexistent/run.txt not found"),
+            std::string::npos);
+  // The share's default with start clips is a quarter: about 100 of 400 starts run (the run is
+  // told from the walk by its root speed at the start: the run clip's is above 3 m/s).
+  const EnvFactory f = make_env_factory(r.parse("{name: imitation, " + walk + ", init_noise: 0, start_clips: [deepmimic/motions/humanoid3d_run.txt]}", ""), r);
+  const std::unique_ptr<Env> env = f();
+  auto& c = dynamic_cast<CharacterEnv&>(*env);
+  std::mt19937_64 rng(2);
+  int running = 0;
+  for (int i = 0; i < 400; ++i) {
+    c.reset(rng);
+    if (c.world().velocity().root_lin.norm() > 2.5) ++running;
+  }
+  EXPECT_NEAR(running / 400.0, 0.25, 0.065);
+}
+
 TEST(ImitationEnv, FallingEndsTheEpisodeEarly) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

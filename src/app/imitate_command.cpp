@@ -45,6 +45,7 @@ struct ImitateArgs {
   std::string method = "iccgan";
   std::string task = "none";  // "heading": steering (task_settings)
   LoadOptions load;  // load.character: the character (default: the recipe's humanoid)
+  std::vector<fs::path> start_clips;  // --start-clips: other skills' motion to start a share of episodes from
   std::vector<std::string> settings;  // --set KEY.PATH=VALUE over the recipe, recorded in the run's config
   long long samples = 0;  // 0: the recipe's budget (a resumed run: its own)
   std::uint64_t seed = 1;
@@ -78,20 +79,24 @@ std::string command_line(const ImitateArgs& a) {
   if (a.samples > 0) line += fmt::format(" --samples {}", a.samples);
   if (a.seed != 1) line += fmt::format(" --seed {}", a.seed);
   if (a.task != "none") line += " --task " + a.task;
+  if (!a.start_clips.empty()) {
+    line += " --start-clips";
+    for (const fs::path& c : a.start_clips) line += " " + c.string();
+  }
   for (const std::string& setting : a.settings) line += " --set " + setting;
   return line;
 }
 
 // The clips on the character, checked to fit it, retargeted first where a map is given. Nothing
 // is written here: bad input fails before the run directory exists.
-std::vector<Clip> clips_on_character(const ImitateArgs& a, const fs::path& character) {
+std::vector<Clip> clips_on_character(const ImitateArgs& a, const std::vector<fs::path>& paths, const fs::path& character) {
   LoadOptions load = a.load;
   load.character = character;
   const std::optional<RetargetMap> map = a.map.empty() ? std::nullopt : std::optional<RetargetMap>(load_retarget_map(a.map));
   const fs::path ctrl = character.parent_path() / (character.stem().string() + "_ctrl.txt");
   const Skeleton target = map ? CharacterModel::from_deepmimic(character, fs::exists(ctrl) ? ctrl : fs::path{}).skeleton : Skeleton{};
   std::vector<Clip> clips;
-  for (const fs::path& path : a.clips) {
+  for (const fs::path& path : paths) {
     Clip clip = load_motion(path, map ? a.load : load);
     if (map) {
       RetargetReport report;
@@ -148,7 +153,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   } else if (!fs::is_regular_file(character)) {
     throw Error("--character " + character.string() + ": not found");
   }
-  const std::vector<Clip> clips = clips_on_character(a, character);
+  const std::vector<Clip> clips = clips_on_character(a, a.clips, character);
+  const std::vector<Clip> start_clips = clips_on_character(a, a.start_clips, character);
   const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
   std::vector<std::string> own = task_settings(a);
   own.insert(own.end(), a.settings.begin(), a.settings.end());
@@ -163,6 +169,11 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   for (const Clip& c : clips) clip_list += (clip_list.empty() ? "" : ", ") + json_string("clips/" + c.name + ".mclip");
   // One clip is the environment's reference (what eval and the video's ghost compare with).
   settings.push_back(clips.size() == 1 ? "env.clip=" + clip_list : "env.clip=[" + clip_list + "]");
+  if (!start_clips.empty()) {
+    std::string start_list;
+    for (const Clip& c : start_clips) start_list += (start_list.empty() ? "" : ", ") + json_string("start_clips/" + c.name + ".mclip");
+    settings.push_back("env.start_clips=[" + start_list + "]");
+  }
   if (!a.load.character.empty()) settings.push_back("env.character=" + json_string("character/" + character.filename().string()));
   settings.insert(settings.end(), own.begin(), own.end());  // the task's, then the user's last: they win
 
@@ -170,6 +181,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   try {
     fs::create_directories(a.out / "clips");
     for (const Clip& c : clips) save_clip(c, a.out / "clips" / (c.name + ".mclip"));
+    if (!start_clips.empty()) fs::create_directories(a.out / "start_clips");
+    for (const Clip& c : start_clips) save_clip(c, a.out / "start_clips" / (c.name + ".mclip"));
     if (!a.load.character.empty()) {
       fs::create_directories(a.out / "character");
       fs::copy_file(character, a.out / "character" / character.filename());
@@ -238,7 +251,7 @@ fs::path export_model(const fs::path& run) {
   fs::remove_all(fresh);
   const std::unique_ptr<Trainer> trainer = Trainer::from_run(run, /*reward_sources=*/true);
   fs::create_directories(fresh);
-  for (const char* own : {"clips", "character", "demos.csv", "config.yaml", "metrics.csv"})
+  for (const char* own : {"clips", "start_clips", "character", "demos.csv", "config.yaml", "metrics.csv"})
     if (fs::exists(run / own)) fs::copy(run / own, fresh / own, fs::copy_options::recursive);
   trainer->export_model(fresh / "checkpoint.pt");
   fs::remove_all(model);
@@ -380,6 +393,9 @@ void add_imitate_command(CLI::App& app) {
   cmd->add_option("--task", args->task, "none, or heading: steering, a target direction the skill walks towards (seed 004 eq. 8)")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "heading"}));
+  cmd->add_option("--start-clips", args->start_clips,
+                  "other skills' clips: a quarter of the episodes start from them (env.start_clip_share), so that the skill can take over from those skills")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();

@@ -140,9 +140,14 @@ std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, 
       reader.parse(override_config(read_text_file(config, kMaxYamlBytes), config.string(), env_settings), "invalid YAML");
   if (!root.IsMap() || !root["env"].IsDefined()) throw Error(config.string() + ": no 'env' section: the environment the skill acts in");
   // A skill acts on its course as configured: a training curriculum's top level, held
-  // (env.terrain.levels, sim/terrain.hpp), in play, videos and every measurement.
+  // (env.terrain.levels, sim/terrain.hpp), in play, videos and every measurement; and it starts
+  // from its own clips (other skills' start clips were for training: env.start_clip_share).
   YAML::Node env = root["env"];
   if (env.IsMap() && env["terrain"].IsMap() && env["terrain"]["levels"].IsDefined()) env["terrain"]["levels"] = 0;
+  if (env.IsMap()) {
+    env.remove("start_clips");
+    env.remove("start_clip_share");
+  }
   return skill_in(make_env_factory(root["env"], reader), networks_bytes, networks, skill_name, model_dir, config.string() + "'s environment",
                   " (a config.yaml that is not the one the networks were exported with?)");
 }

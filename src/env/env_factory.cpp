@@ -216,6 +216,10 @@ EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
   c.control_weight = s.number("control_weight", c.control_weight, 0, 1e6);
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
   c.fallen_starts = s.number("fallen_starts", c.fallen_starts, 0, 1);
+  const std::vector<std::string> start_files = s.texts("start_clips", {});
+  c.start_clip_share = s.number("start_clip_share", start_files.empty() ? 0.0 : 0.25, 0, 1);
+  if (c.start_clip_share > 0 && start_files.empty())
+    reader.fail(s.child("start_clip_share"), "'env.start_clip_share': no 'env.start_clips' to start from");
   c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? ImitationEnvConfig::Goal::Heading : ImitationEnvConfig::Goal::None;
   c.goal_speed = s.number("goal_speed", c.goal_speed, 0, 100);
   c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);
@@ -225,7 +229,9 @@ EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
   c.goal_turn = s.number("goal_turn", c.goal_turn, 0, 180);
   std::vector<std::shared_ptr<const Clip>> clips;
   for (const std::string& f : clip_files) clips.push_back(load_clip(data_path(f, "clip", reader), ch.path));
-  return [model = ch.model, clips, c] { return std::unique_ptr<Env>(make_imitation_env(*model, clips, c)); };
+  std::vector<std::shared_ptr<const Clip>> start_clips;
+  for (const std::string& f : start_files) start_clips.push_back(load_clip(data_path(f, "start_clips", reader), ch.path));
+  return [model = ch.model, clips, c, start_clips] { return std::unique_ptr<Env>(make_imitation_env(*model, clips, c, start_clips)); };
 }
 
 EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {

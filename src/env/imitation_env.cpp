@@ -48,7 +48,8 @@ void perturb_joints(Pose& p, const Skeleton& sk, double noise, std::mt19937_64& 
   }
 }
 
-void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::vector<std::shared_ptr<const Clip>>& clips) {
+void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::vector<std::shared_ptr<const Clip>>& clips,
+           const std::vector<std::shared_ptr<const Clip>>& start_clips) {
   auto fail = [](const std::string& what) { throw Error("imitation env: " + what); };
   const std::pair<const char*, double> values[] = {
       {"alive_bonus", cfg.alive_bonus},       {"forward_weight", cfg.forward_weight},
@@ -64,8 +65,17 @@ void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::v
   if (!(cfg.fallen_starts >= 0 && cfg.fallen_starts <= 1)) fail("fallen_starts must be a fraction in [0, 1]");
   if (cfg.init == ImitationEnvConfig::Init::Mocap && clips.empty())
     fail("Mocap initialisation needs a motion clip");
+  if (!(cfg.start_clip_share >= 0 && cfg.start_clip_share <= 1)) fail("start_clip_share must be a fraction in [0, 1]");
+  if (cfg.start_clip_share > 0 && start_clips.empty()) fail("start_clip_share is above 0 but no start clips are given");
+  if (cfg.start_clip_share > 0 && cfg.init != ImitationEnvConfig::Init::Mocap) fail("start clips replace mocap starts: they need init: mocap");
   if (cfg.env.max_drift > 0 && cfg.init != ImitationEnvConfig::Init::Mocap)
     throw KeyError("max_drift", "measures against the clip a start was drawn from: it needs mocap starts (init: mocap)");
+  for (const auto& clip : start_clips) {
+    if (!clip) fail("a start clip is missing");
+    if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
+      fail("start clip '" + clip->name + "' does not fit character '" + ch.name + "'");
+    if (!(clip->duration() > 0)) fail("start clip '" + clip->name + "' has no duration to start from");
+  }
   for (const auto& clip : clips) {
     if (!clip) fail("a clip of the list is missing");
     if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
@@ -251,8 +261,9 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch,
 
 std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch,
                                                         std::vector<std::shared_ptr<const Clip>> clips,
-                                                        const ImitationEnvConfig& cfg) {
-  check(cfg, ch, clips);
+                                                        const ImitationEnvConfig& cfg,
+                                                        std::vector<std::shared_ptr<const Clip>> start_clips) {
+  check(cfg, ch, clips, start_clips);
   // The clips are not the env's reference: they supply starts (and a non-cyclic one's end), not
   // the phase a reference would (nothing is tracked).
   auto env = std::make_unique<ImitationEnv>(ch, cfg);
@@ -263,14 +274,24 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch,
   if (cfg.init == ImitationEnvConfig::Init::Mocap) {
     const CharacterEnv* self = env.get();  // the sampler lives in the env it reads
     env->set_start_groups(static_cast<int>(clips.size()));
-    env->set_init_sampler([clips, sk, noise, self](std::mt19937_64& rng) {
+    const double share = cfg.start_clip_share;
+    env->set_init_sampler([clips, start_clips, share, sk, noise, self](std::mt19937_64& rng) {
       const int group = self->start_group();
       const auto [clip, when] = group < 0 ? draw_clip_time(clips, rng) : draw_clip_time(std::span(clips).subspan(static_cast<std::size_t>(group), 1), rng);
-      InitState s = self->state_on_clip(*clip, when);
-      s.source = StartSource{clip, when};
-      s = place_at_track_start(std::move(s));
+      // (Drawn only with a share above 0: runs without start clips keep their random sequence.)
+      const bool other = share > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng) < share;
+      InitState s;
+      if (other) {
+        const auto [from, at] = draw_clip_time(start_clips, rng);
+        s = place_at_track_start(self->state_on_clip(*from, at));  // no source: nothing to drift from
+        if (clip->loop != LoopMode::Wrap) s.clip_left = clip->duration();  // one whole kick from wherever it starts
+      } else {
+        s = self->state_on_clip(*clip, when);
+        s.source = StartSource{clip, when};
+        s = place_at_track_start(std::move(s));
+        if (clip->loop != LoopMode::Wrap) s.clip_left = clip->duration() - when;  // seed 004: a kick ends with its clip
+      }
       s.time = 0.0;
-      if (clip->loop != LoopMode::Wrap) s.clip_left = clip->duration() - when;  // seed 004: a kick ends with its clip
       perturb_joints(s.pose, sk, noise, rng);
       return s;
     });

@@ -53,6 +53,13 @@ struct ImitationEnvConfig {
   // episode as a fall do not end this one (it has fallen already): the policy learns to get up
   // from how a character lands, not only from the clip's own poses.
   double fallen_starts = 0.0;
+  // Starts from other motion (switching between skills: a skill trained only from its own clips
+  // has never seen the states another skill hands it). This share of Mocap episodes starts at a
+  // time drawn from the start clips given to make_imitation_env (another skill's clips) instead
+  // of its own: Bergamin et al. 2019's transition starts; seed 004 §5.3 perturbs starts for the
+  // same end. Such an episode follows no clip (no drift is measured) and, where the skill's own
+  // clips do not loop, lasts one whole clip of its own (the one the ordinary draw chose).
+  double start_clip_share = 0.0;
   // Seed 004 eq. 8's example of a dynamic goal: a target heading, drawn at every start and every
   // goal_period seconds, uniformly within goal_turn degrees of the character's heading at the draw
   // (180: any direction; a steering command turns by less; 0: straight on, the plain walk). With Goal::Heading the forward and lateral terms give way to
@@ -92,8 +99,11 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch, std::
 // Mocap starts from several clips (seed 004's integrated learning): a start time uniform over
 // all their frames together, so each clip starts in proportion to its duration. Each clip is a
 // start group (CharacterEnv::choose_start_group): choosing clip i starts from it alone.
+// `start_clips`: the other motion of cfg.start_clip_share (each must fit `ch`; needed when the
+// share is above 0).
 std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch, std::vector<std::shared_ptr<const Clip>> clips,
-                                                const ImitationEnvConfig& cfg = {});
+                                                const ImitationEnvConfig& cfg = {},
+                                                std::vector<std::shared_ptr<const Clip>> start_clips = {});
 
 // The target direction (world yaw, radians) of a Goal::Heading env; tests and tools set it
 // (it holds until the next start or the next goal_period). Error for an env without that goal.
