@@ -6,8 +6,8 @@
 # walk's place, into docs/data/transitions_switch_walk_shareNN.json (the shipped four's is
 # docs/data/transitions.json), and its imitation of the walk into switch_walk_style_shareNN.json.
 #
-#   scripts/switching.sh [SHARE]           train (or resume) and measure; SHARE 0.25 (the
-#                                          default: 2·10^6 samples) or 0.75 (1.5·10^6)
+#   scripts/switching.sh [SHARE]           train (or resume) and measure; SHARE 0.75 (the
+#                                          default, as mimic imitate's: 1.5·10^6 samples) or 0.25 (2·10^6)
 #   scripts/switching.sh measure [SHARE]   measure what the run holds now (its model, or the
 #                                          run's last checkpoint where it was stopped before the end)
 #
@@ -19,7 +19,7 @@ mimic=${MIMIC:-build/src/mimic}
 motions=$data/deepmimic/motions
 measure=false
 [ "${1:-}" = measure ] && { measure=true; shift; }
-share=${1:-0.25}
+share=${1:-0.75}
 case $share in
   0.25) samples=2000000 ;;
   0.75) samples=1500000 ;;

@@ -394,7 +394,7 @@ void add_imitate_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "heading"}));
   cmd->add_option("--start-clips", args->start_clips,
-                  "other skills' clips: a quarter of the episodes start from them (env.start_clip_share), so that the skill can take over from those skills")
+                  "other skills' clips: three quarters of the episodes start from them (env.start_clip_share), so that the skill can take over from those skills")
       ->check(CLI::ExistingFile);
   cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
       ->check(CLI::PositiveNumber);

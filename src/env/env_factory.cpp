@@ -217,7 +217,7 @@ EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
   c.init_noise = s.number("init_noise", c.init_noise, 0, 3);
   c.fallen_starts = s.number("fallen_starts", c.fallen_starts, 0, 1);
   const std::vector<std::string> start_files = s.texts("start_clips", {});
-  c.start_clip_share = s.number("start_clip_share", start_files.empty() ? 0.0 : 0.25, 0, 1);
+  c.start_clip_share = s.number("start_clip_share", start_files.empty() ? 0.0 : 0.75, 0, 1);
   if (c.start_clip_share > 0 && start_files.empty())
     reader.fail(s.child("start_clip_share"), "'env.start_clip_share': no 'env.start_clips' to start from");
   c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? ImitationEnvConfig::Goal::Heading : ImitationEnvConfig::Goal::None;
