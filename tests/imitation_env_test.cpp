@@ -429,6 +429,21 @@ double elbow_angle(const CharacterEnv& env) {
   return revolute_angle(sk.joints[elbow], env.world().pose().rot[elbow]);
 }
 
+// Starts (of 400, seeded `seed`) whose right elbow is at 1.2 rad, after checking that every one
+// is at 1.2 or 0.3 rad (from one of the two held poses).
+int starts_at_1_2_of_400(CharacterEnv& env, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  int high = 0, low = 0;
+  for (int i = 0; i < 400; ++i) {
+    env.reset(rng);
+    const double angle = elbow_angle(env);
+    if (std::abs(angle - 1.2) < 1e-6) ++high;
+    if (std::abs(angle - 0.3) < 1e-6) ++low;
+  }
+  EXPECT_EQ(high + low, 400);
+  return high;
+}
+
 }  // namespace
 
 TEST(ImitationEnv, StartsFromSeveralClipsInProportionToTheirDurations) {
@@ -441,17 +456,7 @@ TEST(ImitationEnv, StartsFromSeveralClipsInProportionToTheirDurations) {
   cfg.init_noise = 0.0;
   auto env = make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{held(0.3, 1.0), held(1.2, 3.0)}, cfg);
   EXPECT_EQ(env->start_groups(), 2);
-  std::mt19937_64 rng(5);
-  int from_long = 0, from_short = 0;
-  const int starts = 400;
-  for (int i = 0; i < starts; ++i) {
-    env->reset(rng);
-    const double angle = elbow_angle(*env);
-    if (std::abs(angle - 1.2) < 1e-6) ++from_long;
-    if (std::abs(angle - 0.3) < 1e-6) ++from_short;
-  }
-  EXPECT_EQ(from_long + from_short, starts);
-  EXPECT_NEAR(from_long / double(starts), 0.75, 0.06);  // 3 s of 4; binomial sd 0.022
+  EXPECT_NEAR(starts_at_1_2_of_400(*env, 5) / 400.0, 0.75, 0.06);  // 3 s of 4; binomial sd 0.022
   // Every clip must fit; an empty collection cannot start Mocap episodes.
   EXPECT_THROW(make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{}, cfg), Error);
   Clip other = *held(0.3, 1.0);
@@ -718,17 +723,8 @@ TEST(ImitationEnv, StartClipsStartTheirShareOfEpisodesFromOtherMotion) {
   const auto own = held_elbow(ch, 0.3, 1.0);  // non-cyclic, 1 s
   const std::vector<std::shared_ptr<const Clip>> other{held_elbow(ch, 1.2, 2.0)};
   auto env = make_imitation_env(ch, std::vector<std::shared_ptr<const Clip>>{own}, cfg, other);
+  EXPECT_NEAR(starts_at_1_2_of_400(*env, 11) / 400.0, 0.25, 0.065);  // binomial sd 0.022
   std::mt19937_64 rng(11);
-  int from_other = 0, from_own = 0;
-  const int starts = 400;
-  for (int i = 0; i < starts; ++i) {
-    env->reset(rng);
-    const double angle = elbow_angle(*env);
-    if (std::abs(angle - 1.2) < 1e-6) ++from_other;
-    if (std::abs(angle - 0.3) < 1e-6) ++from_own;
-  }
-  EXPECT_EQ(from_other + from_own, starts);
-  EXPECT_NEAR(from_other / double(starts), 0.25, 0.065);  // binomial sd 0.022
   // All from the other motion: each episode runs the own clip's whole second (30 control steps),
   // wherever in the other clip it started, and ends as the clip does, not as a failure.
   cfg.start_clip_share = 1.0;
