@@ -465,6 +465,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
     message(FATAL_ERROR "mimic imitate --resume exported no model")
   endif()
   run_fails("excludes" imitate --resume --method gail -o ${OUT}/imitate_run)
+  run_fails("excludes" imitate --resume --start-clips ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run)
   # Steering (--task heading) from the model above: the goal mixed in, the input widened, the
   # response to a commanded turn measured. (With another skill's clip to start a share of the
   # episodes from, copied into the run and its model; the model acts from its own starts.)
@@ -508,6 +509,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_fails("is a navigation controller: it plays alone" play ${OUT}/hlc_run ${OUT}/imitate_steer/model --headless --seconds 0.5
             --json ${OUT}/never.json)
   run_fails("use --method iccgan or gail, not tracking" imitate ${OUT}/jj_mirror.mclip --task heading --method tracking -o ${OUT}/imitate_steer2)
+  run_fails("use --method iccgan or gail" imitate ${OUT}/jj_mirror.mclip --start-clips ${OUT}/jj_mirror.mclip --method tracking -o ${OUT}/imitate_steer2)
   # A CMU clip retargeted by a map, tracked (seed 003's recipe).
   run_ok(imitate ${CMU} --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking
          -o ${OUT}/imitate_cmu --samples 1 --trials 1 --video-seconds 0 --threads 1 --set collect.samples=128 --set collect.envs=2

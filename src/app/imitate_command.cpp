@@ -139,6 +139,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   if (a.clips.empty()) throw Error("imitate: give one clip or more (or --resume -o RUN to go on with a run)");
   if (fs::exists(a.out) && !(fs::is_directory(a.out) && fs::is_empty(a.out)))
     throw Error(a.out.string() + " already exists: `mimic imitate --resume -o " + a.out.string() + "` goes on with it; or choose another -o");
+  if (!a.start_clips.empty() && a.method == "tracking")
+    throw Error("--start-clips starts episodes away from the clip a tracking policy follows: use --method iccgan or gail");
   if (a.task != "none" && a.method == "tracking")
     throw Error("--task " + a.task + " mixes its goal with an adversarial reward: use --method iccgan or gail, not tracking");
   if (a.method == "tracking" && a.clips.size() != 1)
@@ -393,7 +395,7 @@ void add_imitate_command(CLI::App& app) {
   cmd->add_option("--task", args->task, "none, or heading: steering, a target direction the skill walks towards (seed 004 eq. 8)")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "heading"}));
-  cmd->add_option("--start-clips", args->start_clips,
+  CLI::Option* start_clips = cmd->add_option("--start-clips", args->start_clips,
                   "other skills' clips: three quarters of the episodes start from them (env.start_clip_share), so that the skill can take over from those skills")
       ->check(CLI::ExistingFile);
   cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
@@ -406,7 +408,8 @@ void add_imitate_command(CLI::App& app) {
                   "override a value of the recipe: KEY.PATH=VALUE (e.g. env.max_seconds=20, collect.envs=8); repeatable; recorded in the "
                   "run's config");
   cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)")
-      ->excludes(method);  // a resumed run keeps its own recipe
+      ->excludes(method)
+      ->excludes(start_clips);  // a resumed run keeps its own recipe and start clips
   add_load_options(*cmd, args->load);
   cmd->callback([args] { imitate(*args); });
 }
