@@ -756,6 +756,9 @@ TEST(ImitationEnv, TheStartClipKeysReachTheEnv) {
             std::string::npos);
   EXPECT_NE(error("{name: imitation, " + walk + ", start_clips: [/nonexistent/run.txt]}").find("/nonexistent/run.txt not found"),
             std::string::npos);
+  EXPECT_NE(error("{name: imitation, " + walk + ", init: fixed, start_clips: [deepmimic/motions/humanoid3d_run.txt]}")
+                .find("'env.start_clips' replace mocap starts: they need 'init: mocap'"),
+            std::string::npos);
   // The share's default with start clips is three quarters: about 300 of 400 starts run (the run is
   // told from the walk by its root speed at the start: the run clip's is above 3 m/s).
   const EnvFactory f = make_env_factory(r.parse("{name: imitation, " + walk + ", init_noise: 0, start_clips: [deepmimic/motions/humanoid3d_run.txt]}", ""), r);

@@ -220,6 +220,8 @@ EnvFactory imitation(ConfigSection& s, const YamlReader& reader) {
   c.start_clip_share = s.number("start_clip_share", start_files.empty() ? 0.0 : 0.75, 0, 1);
   if (c.start_clip_share > 0 && start_files.empty())
     reader.fail(s.child("start_clip_share"), "'env.start_clip_share': no 'env.start_clips' to start from");
+  if (c.start_clip_share > 0 && c.init != ImitationEnvConfig::Init::Mocap)
+    reader.fail(s.child("start_clips"), "'env.start_clips' replace mocap starts: they need 'init: mocap'");
   c.goal = s.choice("goal", "none", {"none", "heading"}) == "heading" ? ImitationEnvConfig::Goal::Heading : ImitationEnvConfig::Goal::None;
   c.goal_speed = s.number("goal_speed", c.goal_speed, 0, 100);
   c.goal_period = s.number("goal_period", c.goal_period, 1e-3, 1e6);

@@ -70,18 +70,17 @@ void check(const ImitationEnvConfig& cfg, const CharacterModel& ch, const std::v
   if (cfg.start_clip_share > 0 && cfg.init != ImitationEnvConfig::Init::Mocap) fail("start clips replace mocap starts: they need init: mocap");
   if (cfg.env.max_drift > 0 && cfg.init != ImitationEnvConfig::Init::Mocap)
     throw KeyError("max_drift", "measures against the clip a start was drawn from: it needs mocap starts (init: mocap)");
-  for (const auto& clip : start_clips) {
-    if (!clip) fail("a start clip is missing");
-    if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
-      fail("start clip '" + clip->name + "' does not fit character '" + ch.name + "'");
-    if (!(clip->duration() > 0)) fail("start clip '" + clip->name + "' has no duration to start from");
-  }
-  for (const auto& clip : clips) {
-    if (!clip) fail("a clip of the list is missing");
-    if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
-      fail("clip '" + clip->name + "' does not fit character '" + ch.name + "'");
-    if (!(clip->duration() > 0)) fail("clip '" + clip->name + "' has no duration to start from");
-  }
+  // `what`: "clip" or "start clip", for the errors.
+  auto check_fit = [&](const std::vector<std::shared_ptr<const Clip>>& list, const std::string& what) {
+    for (const auto& clip : list) {
+      if (!clip) fail("a " + what + " of the list is missing");
+      if (clip->skeleton.num_joints() != ch.skeleton.num_joints())
+        fail(what + " '" + clip->name + "' does not fit character '" + ch.name + "'");
+      if (!(clip->duration() > 0)) fail(what + " '" + clip->name + "' has no duration to start from");
+    }
+  };
+  check_fit(start_clips, "start clip");
+  check_fit(clips, "clip");
 }
 
 // A start time uniform over all clips' frames together (seed 004's integrated learning draws
