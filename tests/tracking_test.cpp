@@ -100,6 +100,27 @@ TEST(TrackingReward, KnownOffsetsGiveHandComputedKernels) {
   EXPECT_DOUBLE_EQ(tracking_terms(sk, sim, ref).com, 1.0);  // position: unmoved
 }
 
+TEST(TrackingReward, TheRootTermWeighsPositionRotationAndVelocitiesAsDeepMimic) {
+  const Skeleton sk = arm_skeleton();
+  const Pose ref_pose = rest_pose(sk, Vec3(0, 0, 1));
+  const TrackedState ref = state_of(sk, ref_pose);
+  TrackedState sim = ref;
+  EXPECT_DOUBLE_EQ(tracking_terms(sk, sim, ref).root, 1.0);
+  sim.pose.root_pos += Vec3(0.1, 0, 0);                     // 0.1 m off: 0.01
+  sim.pose.rot[0] = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitZ()));  // 0.2 rad: 0.1 * 0.04
+  sim.velocity.root_lin = Vec3(1, 0, 0);                      // 1 m/s: 0.01 * 1
+  sim.velocity.root_ang = Vec3(0, 0, 2);                      // 2 rad/s: 0.001 * 4
+  // exp(-5 * (0.01 + 0.004 + 0.01 + 0.004)) = exp(-0.14)
+  EXPECT_NEAR(tracking_terms(sk, sim, ref).root, std::exp(-0.14), 1e-12);
+  TrackingScales scales;
+  scales.root = 10;
+  EXPECT_NEAR(tracking_terms(sk, sim, ref, scales).root, std::exp(-0.28), 1e-12);
+  // The root's height counts as its horizontal place does.
+  sim = ref;
+  sim.pose.root_pos.z() -= 0.3;
+  EXPECT_NEAR(tracking_terms(sk, sim, ref).root, std::exp(-5 * 0.09), 1e-12);
+}
+
 TEST(TrackingReward, EndEffectorsAreComparedInEachOwnHeadingFrame) {
   // The same pose turned about +Z and moved: hands relative to the root, each in its own
   // heading frame, are unchanged; the centre of mass and root rotation are not.
@@ -165,6 +186,39 @@ TEST(TrackingEnv, FollowingTheClipScoresHighAndAStillPoseScoresLow) {
   EXPECT_EQ(r.reward_terms[0].first, "pose");
   EXPECT_LE(r.reward_terms[0].second, 0.65);
   EXPECT_LE(r.reward_terms[2].second, 0.15);
+}
+
+// Started a metre to the side of the walk's reference two steps before a cycle ends: the root
+// term sees the metre until the reference's next cycle begins, then (resync_root) the reference
+// is moved onto the character and only the step's own error is left; without it, the metre stays.
+TEST(TrackingEnv, ResyncMovesTheReferenceOntoTheCharacterAtANewCycle) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  ASSERT_EQ(walk->loop, LoopMode::Wrap);
+  TrackingConfig cfg;
+  cfg.init = TrackingConfig::Init::Fixed;
+  cfg.weights = {0, 0, 0, 0, 1};  // the root term alone
+  const double t0 = walk->duration() - 1.5 / 30;
+  InitState start = init_state_from_clip(*walk, t0);
+  start.pose.root_pos.y() += 1.0;
+  const auto root_terms = [&](bool resync) {
+    cfg.resync_root = resync;
+    auto env = make_tracking_env(ch, walk, cfg);
+    env->reset(start);
+    std::vector<double> terms;
+    for (int i = 0; i < 2; ++i) {
+      const StepResult r = env->step(env->action_for(walk->sample(t0 + (i + 1) / 30.0)));
+      EXPECT_EQ(r.reward_terms.back().first, "root");
+      terms.push_back(r.reward_terms.back().second);
+    }
+    return terms;
+  };
+  const std::vector<double> off = root_terms(false), on = root_terms(true);
+  EXPECT_LT(off[0], std::exp(-5 * 0.9));  // a metre: exp(-5) and the step's own error
+  EXPECT_LT(off[1], std::exp(-5 * 0.9));
+  EXPECT_DOUBLE_EQ(on[0], off[0]);        // the same cycle: nothing moved
+  EXPECT_GT(on[1], 0.9);                  // the new cycle: the metre is gone
 }
 
 TEST(TrackingEnv, StartsFixedOrAnywhereOnTheClipAndEndsAsTheClipSays) {
@@ -379,4 +433,17 @@ TEST(TrackingEnv, ConfigBuildsItAndRejectsWhatDoesNotFit) {
   EXPECT_NE(message("{name: tracking, scales: {com: -1}}").find("scales.com"), std::string::npos);
   EXPECT_NE(message("{name: tracking, fall_height: 2}").find("fall_height"), std::string::npos);
   EXPECT_NE(message("{name: tracking, max_drift: -1}").find("max_drift"), std::string::npos);
+  EXPECT_NE(message("{name: tracking, scales: {root: -1}}").find("scales.root"), std::string::npos);
+  EXPECT_NE(message("{name: tracking, resync_root: often}").find("resync_root"), std::string::npos);
+  // The root term is reported, weighted, once its weight is set.
+  const EnvFactory rooted = make_env_factory(
+      reader.parse("{name: tracking, clip: deepmimic/motions/humanoid3d_walk.txt, init: fixed, resync_root: true, weights: {root: 0.2}}", "t"),
+      reader);
+  auto env2 = rooted();
+  env2->reset(rng);
+  const StepResult r2 = env2->step(Eigen::VectorXd::Zero(env2->action_size()));
+  ASSERT_EQ(r2.reward_terms.size(), 5u);
+  EXPECT_EQ(r2.reward_terms[4].first, "root");
+  EXPECT_GT(r2.reward_terms[4].second, 0.0);
+  EXPECT_LE(r2.reward_terms[4].second, 0.2);
 }

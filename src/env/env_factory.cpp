@@ -244,13 +244,16 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
                                                                                  : TrackingConfig::Init::Fixed;
   read_character_env(s, reader, c.env);
   c.com_term = s.choice("com_term", "position", {"position", "velocity"}) == "velocity" ? ComTerm::Velocity : ComTerm::Position;
+  c.resync_root = s.boolean("resync_root", c.resync_root);
   ConfigSection w(reader, s.child("weights"), "env.weights");
   c.weights = {w.number("pose", c.weights.pose, 0, 1e6), w.number("velocity", c.weights.velocity, 0, 1e6),
-               w.number("end_effector", c.weights.end_effector, 0, 1e6), w.number("com", c.weights.com, 0, 1e6)};
+               w.number("end_effector", c.weights.end_effector, 0, 1e6), w.number("com", c.weights.com, 0, 1e6),
+               w.number("root", c.weights.root, 0, 1e6)};
   w.finish();
   ConfigSection k(reader, s.child("scales"), "env.scales");
   c.scales = {k.number("pose", c.scales.pose, 0, 1e6), k.number("velocity", c.scales.velocity, 0, 1e6),
-              k.number("end_effector", c.scales.end_effector, 0, 1e6), k.number("com", c.scales.com, 0, 1e6)};
+              k.number("end_effector", c.scales.end_effector, 0, 1e6), k.number("com", c.scales.com, 0, 1e6),
+              k.number("root", c.scales.root, 0, 1e6)};
   k.finish();
   auto clip = load_clip(data_path(clip_file, "clip", reader), ch.path);
   return [model = ch.model, clip, c] { return std::unique_ptr<Env>(make_tracking_env(*model, clip, c)); };

@@ -46,6 +46,11 @@ TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const 
   if (effectors > 0) t.end_effector = std::exp(-scales.end_effector * ee / effectors);
   const Vec3 com_error = com == ComTerm::Velocity ? Vec3(ref.com_velocity - sim.com_velocity) : Vec3(ref.com - sim.com);
   t.com = std::exp(-scales.com * com_error.squaredNorm());
+  const double root_error = (ref.pose.root_pos - sim.pose.root_pos).squaredNorm() +
+                            0.1 * squared(rotation_distance(ref.pose.rot[0], sim.pose.rot[0])) +
+                            0.01 * (ref.velocity.root_lin - sim.velocity.root_lin).squaredNorm() +
+                            0.001 * (ref.velocity.root_ang - sim.velocity.root_ang).squaredNorm();
+  t.root = std::exp(-scales.root * root_error);
   return t;
 }
 
@@ -93,19 +98,28 @@ void check(const TrackingConfig& cfg, const CharacterModel& ch, const Clip* clip
   const std::pair<const char*, double> values[] = {
       {"weights.pose", cfg.weights.pose},       {"weights.velocity", cfg.weights.velocity},
       {"weights.end_effector", cfg.weights.end_effector}, {"weights.com", cfg.weights.com},
-      {"scales.pose", cfg.scales.pose},         {"scales.velocity", cfg.scales.velocity},
-      {"scales.end_effector", cfg.scales.end_effector},   {"scales.com", cfg.scales.com}};
+      {"weights.root", cfg.weights.root},       {"scales.pose", cfg.scales.pose},
+      {"scales.velocity", cfg.scales.velocity}, {"scales.end_effector", cfg.scales.end_effector},
+      {"scales.com", cfg.scales.com},           {"scales.root", cfg.scales.root}};
   for (const auto& [name, v] : values)
     if (!(v >= 0) || !std::isfinite(v)) fail(std::string(name) + " must be a non-negative number");
 }
 
-// Appends the four weighted terms after each step, against the reference at the step's time.
+// Moves a reference state by `d` (the root, every link and the centre of mass).
+void shift(TrackedState& s, const Vec3& d) {
+  s.pose.root_pos += d;
+  for (Vec3& p : s.links.joint_pos) p += d;
+  s.com += d;
+}
+
+// Appends the weighted terms after each step, against the reference at the step's time.
 class TrackingEnv final : public CharacterEnv {
  public:
   TrackingEnv(const CharacterModel& ch, std::shared_ptr<const Clip> clip, const TrackingConfig& cfg)
       : CharacterEnv(ch, cfg.env, std::move(clip)), masses_(world()), weights_(cfg.weights), scales_(cfg.scales),
-        com_term_(cfg.com_term), dt_(1.0 / cfg.env.sim.control_hz) {
-    set_max_step_reward(weights_.pose + weights_.velocity + weights_.end_effector + weights_.com);
+        com_term_(cfg.com_term), resync_(cfg.resync_root && reference()->loop == LoopMode::Wrap),
+        dt_(1.0 / cfg.env.sim.control_hz) {
+    set_max_step_reward(weights_.pose + weights_.velocity + weights_.end_effector + weights_.com + weights_.root);
   }
 
   StepResult step(const Eigen::VectorXd& action) override {
@@ -118,13 +132,29 @@ class TrackingEnv final : public CharacterEnv {
     sim_.links = w.link_frames();
     sim_.com = w.centre_of_mass();
     if (by_velocity) sim_.com_velocity = (sim_.com - com_before) / dt_;
-    const TrackedState ref = reference_state(*reference(), masses_, time(), by_velocity ? dt_ : 0.0);
+    TrackedState ref = reference_state(*reference(), masses_, time(), by_velocity ? dt_ : 0.0);
+    if (resync_) {
+      const auto cycle = static_cast<long long>(std::floor(time() / reference()->duration()));
+      if (cycle != cycle_) {  // a new cycle: the reference's root onto the character's, horizontally
+        cycle_ = cycle;
+        offset_ = sim_.pose.root_pos - ref.pose.root_pos;
+        offset_.z() = 0;
+      }
+      shift(ref, offset_);
+    }
     const TrackingTerms t = tracking_terms(w.character().skeleton, sim_, ref, scales_, com_term_);
     r.reward_terms.emplace_back("pose", weights_.pose * t.pose);
     r.reward_terms.emplace_back("velocity", weights_.velocity * t.velocity);
     r.reward_terms.emplace_back("end_effector", weights_.end_effector * t.end_effector);
     r.reward_terms.emplace_back("com", weights_.com * t.com);
+    if (weights_.root > 0) r.reward_terms.emplace_back("root", weights_.root * t.root);
     return r;
+  }
+
+ protected:
+  void on_start() override {
+    offset_ = Vec3::Zero();
+    cycle_ = static_cast<long long>(std::floor(time() / reference()->duration()));
   }
 
  private:
@@ -132,7 +162,10 @@ class TrackingEnv final : public CharacterEnv {
   TrackingWeights weights_;
   TrackingScales scales_;
   ComTerm com_term_;
+  bool resync_;       // resync_root on a looping clip
   double dt_;         // control step
+  Vec3 offset_ = Vec3::Zero();
+  long long cycle_ = 0;  // the reference's cycle the offset was taken at
   TrackedState sim_;  // storage reused every step
 };
 

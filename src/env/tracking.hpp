@@ -10,6 +10,13 @@
 // or, with com_term velocity, exp(-scale * |v*_c - v_c|^2) on the centre of mass's mean velocity
 // over the step (DeepMimic's implementation; its scale is 10 * 0.1 = 1): a position kernel gives
 // no pull once the character has fallen a metre behind a fast clip (the dog's 2.4 m/s trot).
+// An optional fifth term, weighted 0 unless set (DeepMimic's SceneImitate.cpp, weight 0.2 there):
+//   r_root         exp(-5 * (|p*_r - p_r|^2 + 0.1 angle(q*_r^-1 q_r)^2 + 0.01 |v*_r - v_r|^2
+//                            + 0.001 |w*_r - w_r|^2))        the root's world position (height above
+//                                                            the ground), rotation and velocities
+// and, with resync_root, the reference moved horizontally onto the character's root at every new
+// cycle of a looping clip (DeepMimic's sync_char_root_pos): the positional terms then measure this
+// cycle's path from where the character is, not a lag that only grows.
 // Means, not the paper's sums: DeepMimic's implementation (which seed 003 builds on) normalises its
 // joint weights to sum 1 and divides the end-effector error by their count; with sums the kernels
 // of a 13-joint humanoid would be near zero for any early policy. A step's reward is at most 1, so
@@ -24,10 +31,10 @@
 namespace mimic {
 
 struct TrackingWeights {
-  double pose = 0.65, velocity = 0.10, end_effector = 0.15, com = 0.10;
+  double pose = 0.65, velocity = 0.10, end_effector = 0.15, com = 0.10, root = 0.0;
 };
 struct TrackingScales {
-  double pose = 2.0, velocity = 0.1, end_effector = 40.0, com = 10.0;
+  double pose = 2.0, velocity = 0.1, end_effector = 40.0, com = 10.0, root = 5.0;
 };
 
 // What the reward compares, of the simulated character or of the reference at one instant.
@@ -41,9 +48,9 @@ struct TrackedState {
 
 enum class ComTerm { Position, Velocity };
 
-// The four kernels, each in [0, 1] (1: identical).
+// The five kernels, each in [0, 1] (1: identical).
 struct TrackingTerms {
-  double pose = 1, velocity = 1, end_effector = 1, com = 1;
+  double pose = 1, velocity = 1, end_effector = 1, com = 1, root = 1;
 };
 TrackingTerms tracking_terms(const Skeleton& sk, const TrackedState& sim, const TrackedState& ref, const TrackingScales& scales = {},
                              ComTerm com = ComTerm::Position);
@@ -73,6 +80,7 @@ struct TrackingConfig {
   TrackingWeights weights;
   TrackingScales scales;
   ComTerm com_term = ComTerm::Position;  // Velocity: set scales.com to about 1
+  bool resync_root = false;              // the reference onto the character at each new cycle
   // The character environment: the policy sees its state and the clip's phase; episodes last 20 s
   // on a cyclic clip (a non-cyclic clip ends at its end) and end early on a fall or with the root
   // below half the reference's height; early_termination off for contact-rich clips (roll, get-up).
@@ -87,7 +95,8 @@ struct TrackingConfig {
   }
 };
 
-// The environment; reward terms are named pose, velocity, end_effector and com (weighted).
+// The environment; reward terms are named pose, velocity, end_effector and com (weighted), and
+// root where its weight is above 0.
 // Throws Error on a clip that does not fit the character, a negative weight or scale.
 std::unique_ptr<CharacterEnv> make_tracking_env(const CharacterModel& ch, std::shared_ptr<const Clip> clip,
                                                 const TrackingConfig& cfg = {});
