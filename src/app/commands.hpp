@@ -11,6 +11,7 @@ namespace mimic::app {
 void add_motion_commands(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_render_commands(CLI::App& app);
+void add_character_scale_command(CLI::App& app);  // under `mimic character` (add_render_commands)
 void add_train_commands(CLI::App& app);
 void add_imitation_commands(CLI::App& app);
 void add_imitate_command(CLI::App& app);

@@ -21,6 +21,7 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "mimic 0.1.0");
   mimic::app::add_motion_commands(app);
   mimic::app::add_render_commands(app);
+  mimic::app::add_character_scale_command(app);
   mimic::app::add_demo_command(app);
   mimic::app::add_train_commands(app);
   mimic::app::add_imitate_command(app);
