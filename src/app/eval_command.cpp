@@ -293,10 +293,11 @@ void evaluate(const EvalArgs& args) {
   if (character && (clip || character->reference())) {
     const int history = skill->history();
     const PolicyFunction act = policy_on_character(args, skill, *env);
-    const ImitationReport r = measure_imitation(*character, act, history, args.trials, clip.get());
+    const ImitationReport r = measure_imitation(*character, act, history, args.trials, clip.get(), args.goal_along_clip);
     const std::string name = clip ? clip->name : character->reference()->name;
-    spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{})",
-                 r.trial_errors.size(), name, r.cycle_seconds, contexts ? fmt::format(", context {} held", args.context) : "");
+    spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{}{})",
+                 r.trial_errors.size(), name, r.cycle_seconds, contexts ? fmt::format(", context {} held", args.context) : "",
+                 args.goal_along_clip ? ", commanded along the clip's path" : "");
     spdlog::info("  error           {:.3f} +- {:.3f} m (mean over links of the world position error); per trial: median {:.3f}, "
                  "largest {:.3f} m", r.error_mean(), r.error_std(), median_of(r.trial_errors),
                  *std::max_element(r.trial_errors.begin(), r.trial_errors.end()));
@@ -313,13 +314,14 @@ void evaluate(const EvalArgs& args) {
     json += fmt::format(", \"imitation\": {{\"clip\": {}, \"trials\": {}, \"cycle_seconds\": {}, \"error_mean\": {}, \"error_std\": {}, "
                         "\"trial_errors\": {}, \"falls\": {}, \"down\": {}, \"normalised_return\": {}, \"progress\": {}, "
                         "\"trial_progress\": {}, \"pose_error_mean\": {}, \"pose_error_std\": {}, \"trial_pose_errors\": {}, "
-                        "\"link_errors\": {}, \"link_pose_errors\": {}, \"step_errors\": {}, \"step_pose_errors\": {}{}}}",
+                        "\"link_errors\": {}, \"link_pose_errors\": {}, \"step_errors\": {}, \"step_pose_errors\": {}{}{}}}",
                         json_string(name), r.trial_errors.size(), r.cycle_seconds, json_number(r.error_mean()),
                         json_number(r.error_std()), json_numbers(r.trial_errors), r.falls, r.down,
                         json_number(r.normalised_return_mean()), json_number(r.progress_mean()), json_numbers(r.trial_progress),
                         json_number(r.pose_error_mean()), json_number(r.pose_error_std()), json_numbers(r.trial_pose_errors),
                         links_json(r, r.link_errors), links_json(r, r.link_pose_errors), json_numbers(r.step_errors), json_numbers(r.step_pose_errors),
-                        contexts ? fmt::format(", \"context\": {}", args.context) : "");
+                        contexts ? fmt::format(", \"context\": {}", args.context) : "",
+                        args.goal_along_clip ? ", \"goal_along_clip\": true" : "");
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
@@ -384,6 +386,9 @@ void add_eval_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(0.0, 180.0));
   ev->add_option("--steering-trials", args->steering_trials, "trials per turn")->capture_default_str()->check(CLI::PositiveNumber);
+  ev->add_flag("--goal-along-clip", args->goal_along_clip,
+               "imitation trials of a skill with a heading goal: command at every step the clip's direction of travel (its root's over "
+               "a cycle centred on the moment), so that it walks the clip's own path (default: the target is drawn as in training)");
   ev->add_flag("--crossing", args->crossing,
               "how often the skill gets over its course (the run's env.terrain, or one given by --set \"env.terrain={kind: stairs, "
               "step_height: 0.1}\"); a skill with a heading goal is commanded along it");

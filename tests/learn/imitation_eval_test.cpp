@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "env/imitation_env.hpp"
 #include "env/tracking.hpp"
 #include "../humanoid_data.hpp"
 
@@ -94,6 +95,59 @@ TEST(ImitationError, ReportsMeanAndSpreadOverTrials) {
   EXPECT_NEAR(r.error_mean(), 0.2, 1e-12);
   EXPECT_NEAR(r.error_std(), 0.1, 1e-12);
   EXPECT_TRUE(std::isnan(r.normalised_return_mean()));
+}
+
+// A clip of a lone root: moving along 30 degrees while facing 0, or turning in place to 40.
+TEST(ImitationError, TheClipsTravelHeadingIsItsRootsDirectionOverACycle) {
+  Skeleton sk;
+  Joint root;
+  root.name = "root", root.type = JointType::Free;
+  sk.joints.push_back(root);
+  Clip moving;
+  moving.skeleton = sk, moving.fps = 10;
+  const Vec3 way(std::cos(kPi / 6), std::sin(kPi / 6), 0);
+  for (int f = 0; f < 11; ++f) moving.frames.push_back(rest_pose(sk, Vec3(0, 0, 1) + 0.1 * f * way));
+  EXPECT_NEAR(clip_travel_heading(moving, 0.5), kPi / 6, 1e-9);
+  EXPECT_NEAR(clip_travel_heading(moving, 0.0), kPi / 6, 1e-9);  // the window held at the ends
+  Clip turning = moving;
+  for (Pose& p : turning.frames) p.root_pos = Vec3(0, 0, 1), p.rot[0] = heading_rotation(40 * kPi / 180);
+  EXPECT_NEAR(clip_travel_heading(turning, 0.5), 40 * kPi / 180, 1e-9);
+}
+
+// Commanded along the clip's path, a steered skill's target is the clip's direction of travel at
+// every step; an env without a heading goal is refused.
+TEST(ImitationError, AlongTheClipSetsTheHeadingGoalToTheClipsTravel) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  const auto walk = test::humanoid3d_motion(ch, "humanoid3d_walk.txt");
+  ImitationEnvConfig cfg;
+  cfg.goal = ImitationEnvConfig::Goal::Heading;
+  cfg.goal_turn = 90;
+  cfg.env.max_seconds = 1.0;
+  auto env = make_imitation_env(ch, walk, cfg);
+  // Each observed target (its angle from the character's heading) against the clip's travel now.
+  std::vector<double> misses;
+  int goal_at = -1;
+  for (const ObservationSlice& part : env->observation_layout())
+    if (part.name == "goal") goal_at = part.offset;
+  ASSERT_GE(goal_at, 0);
+  const PolicyFunction still = [&](const Eigen::VectorXd& x) {
+    const double seen = std::atan2(x[goal_at + 1], x[goal_at]);
+    const double expected = clip_travel_heading(*walk, env->time()) - heading_angle(env->world().pose().rot[0]);
+    misses.push_back(std::abs(std::remainder(seen - expected, 2 * kPi)));
+    return Eigen::VectorXd::Zero(env->action_size());
+  };
+  (void)measure_imitation(*env, still, 1, 2, walk.get(), /*goal_along_clip=*/true);
+  EXPECT_NEAR(goal_heading(*env), clip_travel_heading(*walk, env->time()), 1e-12);
+  ASSERT_GE(misses.size(), 60u);  // two trials of 1 s
+  for (const double m : misses) EXPECT_LT(m, 1e-9);
+  // Without it the env draws its own targets, up to 90 degrees off the clip's travel.
+  misses.clear();
+  (void)measure_imitation(*env, still, 1, 2, walk.get());
+  EXPECT_GT(*std::max_element(misses.begin(), misses.end()), 0.1);
+  TrackingConfig tc;
+  auto tracking = make_tracking_env(ch, walk, tc);
+  EXPECT_THROW((void)measure_imitation(*tracking, still, 1, 1, walk.get(), true), Error);
 }
 
 TEST(ImitationError, FollowingTheClipBeatsStandingStillOnTheHumanoid) {

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "env/down_rule.hpp"
+#include "env/imitation_env.hpp"
 #include "learn/imitation/frame_history.hpp"
 
 namespace mimic {
@@ -63,9 +64,31 @@ double progress_along(const Vec3& sim_displacement, const Vec3& ref_displacement
   return sim.dot(ref) / ref.squaredNorm();
 }
 
-ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip) {
+double clip_travel_heading(const Clip& clip, double t) {
+  const double half = clip.duration() / 2;
+  const Vec3 d = clip.sample(t + half).root_pos - clip.sample(t - half).root_pos;
+  if (d.head<2>().norm() < 0.01) return heading_angle(clip.sample(t).rot[0]);
+  return std::atan2(d.y(), d.x());
+}
+
+ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip,
+                                  bool goal_along_clip) {
   if (!clip) clip = env.reference();
   if (!clip) throw Error("imitation error: the environment has no reference clip; name one");
+  if (goal_along_clip && !has_heading_goal(env))
+    throw Error("imitation error: the goal along the clip is for a skill with a heading goal; this environment has none");
+  // The target for the next action: the clip's direction of travel now (the observation's "goal"
+  // part, seen from the character), in place of the env's own draw.
+  int goal_at = -1;
+  for (const ObservationSlice& part : env.observation_layout())
+    if (part.name == "goal") goal_at = part.offset;
+  const auto along_clip = [&](Eigen::VectorXd observation) {
+    if (goal_along_clip) {
+      set_goal_heading(env, clip_travel_heading(*clip, env.time()));
+      observation.segment<2>(goal_at) = goal_observation(env);
+    }
+    return observation;
+  };
   const Skeleton& sk = env.world().character().skeleton;
   if (clip->skeleton.num_joints() != sk.num_joints())
     throw Error("imitation error: clip '" + clip->name + "' does not fit character '" + env.world().character().name + "'");
@@ -88,7 +111,7 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
   std::vector<LinkFrames> sim_frames, ref_frames;
   for (int i = 0; i < trials; ++i) {
     const double t0 = clip->duration() * i / trials;
-    frames.reset(env.reset(env.state_on_clip(*clip, t0)));
+    frames.reset(along_clip(env.reset(env.state_on_clip(*clip, t0))));
     // Progress: where the character's root is when its episode ends (a fall ends it early)
     // against where the reference's is at the full episode's end.
     const Vec3 sim_start = env.world().root_position(), ref_start = clip->sample(t0).root_pos;
@@ -106,7 +129,7 @@ ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, 
     for (int t = 1; t <= std::max(error_steps, episode_steps); ++t) {
       if (over && t > error_steps) break;
       const StepResult r = env.step(act(frames.stacked()));
-      frames.push(r.observation);
+      frames.push(along_clip(r.observation));
       const Pose ref = clip->sample(env.time());
       if (t <= error_steps) {
         sim_frames.push_back(env.world().link_frames());

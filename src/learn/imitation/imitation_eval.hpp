@@ -80,10 +80,19 @@ struct ImitationReport {
 };
 
 // Runs `trials` episodes of `env` from the reference `clip` (the env's own reference when null)
-// acting by `act` on inputs of `history` stacked frames. Throws Error without a clip, with a clip
-// that does not fit the character, or trials < 1.
+// acting by `act` on inputs of `history` stacked frames. With `goal_along_clip`, a skill with a
+// heading goal is commanded at every step the clip's direction of travel then
+// (clip_travel_heading): it is measured walking the clip's own path, where otherwise its target
+// stays where it faced at the start while a clip that curves (DeepMimic's walk turns 7 degrees a
+// cycle) goes on turning. Throws Error without a clip, with a clip that does not fit the
+// character, with trials < 1, or with goal_along_clip on an env without a heading goal.
 using PolicyFunction = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
-ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip = nullptr);
+ImitationReport measure_imitation(CharacterEnv& env, const PolicyFunction& act, int history, int trials, const Clip* clip = nullptr,
+                                  bool goal_along_clip = false);
+
+// The direction (yaw, radians) of the clip root's horizontal travel over one cycle centred on
+// time t; where it travels less than 1 cm over that cycle, its root's heading at t.
+double clip_travel_heading(const Clip& clip, double t);
 
 // Robustness (seed 004 section 6.4, DESIGN.md section 5): control steps ("frames") a policy keeps
 // the character up before it fails, failing meaning lying on the ground for `lying_frames`
