@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# A skill learnt from a video (docs/video.md): DeepMimic's walk rendered on its humanoid
-# (`mimic render`, its default camera), put through the pose model (`mimic video keypoints`),
+# A skill learnt from a video (docs/video.md): 4 s of DeepMimic's walk rendered on its humanoid
+# by a camera that stays put (`mimic render --fixed-camera`: a following camera would hide the
+# walk's travel from the pose model), put through the pose model (`mimic video keypoints`),
 # reconstructed (`mimic reconstruct`, its defaults), imitated (`mimic imitate`, the ICCGAN recipe,
 # 10^7 samples), evaluated against the reconstructed clip (the run's eval.json) and against the
 # capture the video was rendered from (eval_truth.json), and filmed beside the source video
@@ -21,12 +22,12 @@ walk=$data/deepmimic/motions/humanoid3d_walk.txt
 character=$data/deepmimic/characters/humanoid3d.txt
 mkdir -p "$src"
 if [ ! -f "$run/config.yaml" ]; then
-  "$mimic" render "$walk" -o "$src/walk.mp4"
+  "$mimic" render "$walk" --seconds 4 --fixed-camera -o "$src/walk.mp4"
   "$mimic" video keypoints "$src/walk.mp4" -o "$src/walk.keypoints.json"
   "$mimic" reconstruct "$src/walk.keypoints.json" --character "$character" -o "$src/walk.video.mclip" --truth "$walk" --json "$src/reconstruction.json"
   "$mimic" imitate "$src/walk.video.mclip" -o "$run" --samples 10000000 --threads 1
 else
-  [ -f "$src/walk.mp4" ] || "$mimic" render "$walk" -o "$src/walk.mp4"
+  [ -f "$src/walk.mp4" ] || "$mimic" render "$walk" --seconds 4 --fixed-camera -o "$src/walk.mp4"
   "$mimic" imitate --resume -o "$run"
 fi
 # Against the capture itself: how near the skill learnt from the video comes to the true motion.

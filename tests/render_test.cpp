@@ -94,6 +94,30 @@ TEST(Render, ClipThatDoesNotFitTheCharacterIsAnError) {
   EXPECT_THROW(render_clip_video(CharacterModel::from_skeleton(small, "small"), jack, test::temp_dir("render_bad") / "x.mp4"), Error);
 }
 
+// A clip moving 3 m along x and 1 m along y: the fixed camera looks at the middle of its root's
+// path, raised to 55% of the height, from where the path's diagonal and 0.5 m beyond each end fit
+// the picture's width.
+TEST(Render, TheFixedCameraFramesTheRootsWholePath) {
+  Clip clip = builtin_jumping_jack();
+  clip.loop = LoopMode::None;
+  const Vec3 start = clip.frames.front().root_pos;
+  const double n = static_cast<double>(clip.frames.size() - 1);
+  for (std::size_t f = 0; f < clip.frames.size(); ++f) {
+    const double u = static_cast<double>(f) / n;
+    clip.frames[f].root_pos = Vec3(start.x() + 3.0 * u, start.y() + 1.0 * u, start.z());
+  }
+  CameraSpec base{Vec3(0, 0, 0.1), 0.0, 90.0, -12.0};
+  const CameraSpec cam = fixed_clip_camera(clip, clip.duration(), 30.0, 1.6, 4.0 / 3.0, base);
+  EXPECT_LT((cam.lookat - Vec3(start.x() + 1.5, start.y() + 0.5, 0.55 * 1.6 + 0.1)).norm(), 1e-9) << cam.lookat.transpose();
+  const double half_width = std::atan(std::tan(22.5 * kPi / 180) * 4.0 / 3.0);  // 28.96 degrees
+  EXPECT_NEAR(cam.distance, (std::sqrt(10.0) / 2 + 0.5) / std::tan(half_width), 1e-9);  // 3.77 m
+  EXPECT_EQ(cam.azimuth, 90.0);
+  // A clip that stays in place: the following camera's 2.2 heights.
+  Clip still = clip;
+  for (Pose& p : still.frames) p.root_pos = start;
+  EXPECT_NEAR(fixed_clip_camera(still, still.duration(), 30.0, 1.6, 4.0 / 3.0, base).distance, 2.2 * 1.6, 1e-9);
+}
+
 // The camera follows the root smoothed (0.9 of where it looked, 0.1 of the root), but takes the
 // root as it is at the first frame and after a restart (a new episode back at the start).
 TEST(Render, CameraFollowSmoothsTheRootAndJumpsToItAfterARestart) {

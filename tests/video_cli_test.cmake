@@ -39,6 +39,9 @@ expect_in("${LAST_OUT}" "38 at 30.000 Hz")
 # Played on the character it was reconstructed on (found by its skeleton), not a simple body.
 run_ok(render ${OUT}/walk_rec.mclip -o ${OUT}/walk_rec.mp4 --seconds 0.2 --width 160 --height 120)
 expect_in("${LAST_OUT}" "character 'humanoid3d'")
+# A camera that stays put (a pose model then sees the travel); a policy's video refuses it.
+run_ok(render ${OUT}/walk_rec.mclip -o ${OUT}/walk_rec_fixed.mp4 --seconds 0.2 --width 160 --height 120 --fixed-camera)
+run_fails("--fixed-camera is for a clip" render ${OUT} -o ${OUT}/x.mp4 --fixed-camera)
 run_ok(table ${OUT}/walk_rec.json --names walk -o ${OUT}/table.md)
 expect_in("${LAST_OUT}" "| walk | 38 |")
 run_fails_named("walk_synth.json:1: the evaluation: missing \"run\"" table ${OUT}/walk_synth.json)

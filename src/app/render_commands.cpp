@@ -78,6 +78,9 @@ void add_render_commands(CLI::App& app) {
   render->add_option("input", args->input, "motion file, or a training run directory (its policy acting)")->required()->check(CLI::ExistingPath);
   render->add_option("-o,--output", args->output, "output .mp4 or .gif")->required();
   render->add_flag("--ghost", args->video.ghost, "also draw the clip as a translucent ghost beside the character (a run: its reference, over it)");
+  render->add_flag("--fixed-camera", args->video.fixed_camera,
+                   "a clip: a camera that does not move, framing the root's whole path (default: one following the root), so that "
+                   "the video shows the character's travel, as a pose model needs to recover it");
   render->add_option("--seconds", args->video.seconds, "length (default: the clip's duration)");
   render->add_option("--width", args->video.width, "pixels")->capture_default_str()->check(CLI::Range(16, 1280));
   render->add_option("--height", args->video.height, "pixels")->capture_default_str()->check(CLI::Range(16, 720));
@@ -94,6 +97,7 @@ void add_render_commands(CLI::App& app) {
     for (const std::string& setting : args->settings)
       if (setting.rfind("env.", 0) != 0) throw Error("--set " + setting + ": render overrides environment keys only (env.KEY=VALUE)");
     if (std::filesystem::is_directory(args->input)) {
+      if (args->video.fixed_camera) throw Error(args->input.string() + ": --fixed-camera is for a clip; a policy's video follows its character");
       PolicyVideoOptions o;
       o.env_settings = args->settings;
       o.width = args->video.width, o.height = args->video.height, o.ghost = args->video.ghost;
