@@ -27,7 +27,7 @@ const std::string kCharacter = R"({
 {"ID": 2, "Name": "right_knee", "Shape": "capsule", "Mass": 3, "AttachX": 0, "AttachY": -0.2, "AttachZ": 0, "AttachThetaX": 0, "AttachThetaY": 0, "AttachThetaZ": 0, "Param0": 0.1, "Param1": 0.3, "Param2": 0}
 ],
 "DrawShapeDefs": [
-{"ID": 0, "Name": "knee_shape", "Shape": "capsule", "ParentJoint": 2, "AttachX": 0, "AttachY": -0.2, "AttachZ": 0, "Param0": 0.1, "Param1": 0.3, "Param2": 0}
+{"ID": 0, "Name": "knee\tshape", "Shape": "capsule", "ParentJoint": 2, "AttachX": 0, "AttachY": -0.2, "AttachZ": 0, "Param0": 0.1, "Param1": 0.3, "Param2": 0}
 ]
 }
 )";
@@ -80,6 +80,7 @@ TEST(CharacterScale, SegmentsMassesAndGainsTakeTheirFactors) {
   EXPECT_EQ(after.skeleton.joints[2].limits, before.skeleton.joints[2].limits);
   EXPECT_EQ(after.bodies[1].shape, "box");
   EXPECT_NE(out.character.find("\"ParentJoint\": 2"), std::string::npos);
+  EXPECT_NE(out.character.find("\"knee\\u0009shape\""), std::string::npos);  // an escaped name stays escaped
   EXPECT_NE(out.character.find("\"Param1\": 0.45"), std::string::npos);  // the draw shape, the knee's factor
 
   // The controller: Kp and Kd times the gain factor, the rest kept.

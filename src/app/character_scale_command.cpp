@@ -59,23 +59,18 @@ void add_character_scale_command(CLI::App& app) {
     if (args->output.extension() != ".txt") throw Error(args->output.string() + ": a DeepMimic character file is a .txt");
     const ScaledCharacter scaled = scale_deepmimic_character(read_text_file(args->input), args->input.string(), scaling);
     const std::filesystem::path ctrl_in = controller_of(args->input), ctrl_out = controller_of(args->output);
+    // The new character read back, and the source's controller checked against it (names, counts),
+    // before either file is written.
+    const DeepMimicCharacter parsed = parse_deepmimic_character(scaled.character, args->output.string());
     std::string ctrl;
-    if (std::filesystem::exists(ctrl_in)) ctrl = scale_deepmimic_controller(read_text_file(ctrl_in), ctrl_in.string(), scaled.gains);
-    // Both checked before either is written: the new body must load as a character.
-    const std::filesystem::path tmp = args->output.parent_path() / (".scaled_" + args->output.filename().string());
-    write_file_atomic(tmp, scaled.character);
-    CharacterModel ch;
-    try {
-      ch = CharacterModel::from_deepmimic(tmp);
-    } catch (...) {
-      std::filesystem::remove(tmp);
-      throw;
+    if (std::filesystem::exists(ctrl_in)) {
+      const std::string text = read_text_file(ctrl_in);
+      (void)parse_deepmimic_pd_gains(text, ctrl_in.string(), parsed.skeleton);
+      ctrl = scale_deepmimic_controller(text, ctrl_in.string(), scaled.gains);
     }
-    std::filesystem::remove(tmp);
-    if (!ctrl.empty()) (void)parse_deepmimic_pd_gains(ctrl, ctrl_out.string(), ch.skeleton);
-    const CharacterModel source = CharacterModel::from_deepmimic(args->input);
     write_file_atomic(args->output, scaled.character);
     if (!ctrl.empty()) write_file_atomic(ctrl_out, ctrl);
+    const CharacterModel ch = CharacterModel::from_deepmimic(args->output), source = CharacterModel::from_deepmimic(args->input);
     spdlog::info("wrote {}{}: {:.1f} kg (was {:.1f}), {:.3f} m tall at rest (was {:.3f}), gains and torque limits x{:.3g}",
                  args->output.string(), ctrl.empty() ? "" : " and " + ctrl_out.string(), ch.total_mass(), source.total_mass(),
                  ch.rest_height(), source.rest_height(), scaled.gains);

@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "app/evaluate.hpp"
 #include "core/error.hpp"
+#include "core/json_text.hpp"
 #include "core/file_io.hpp"
 #include "core/statistics.hpp"
 #include "env/character_env.hpp"
@@ -31,14 +32,7 @@
 
 namespace mimic::app {
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
+std::string json_string(const std::string& s) { return json_quoted(s); }
 
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
 

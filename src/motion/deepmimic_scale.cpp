@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "core/json_text.hpp"
 #include "core/yaml_reader.hpp"
 #include "motion/deepmimic.hpp"
 
@@ -16,15 +17,6 @@ std::string number_text(double v) {
   return buf;
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + '"';
-}
-
 // JSON text of a node read from JSON: mappings keep their key order; a scalar that was quoted in
 // the source (yaml-cpp tags it "!") is written quoted, any other as it stands (numbers, true).
 void write_json(const YAML::Node& n, int depth, std::string& out) {
@@ -33,7 +25,7 @@ void write_json(const YAML::Node& n, int depth, std::string& out) {
     out += "{\n";
     bool first = true;
     for (const auto& kv : n) {
-      out += (first ? "" : ",\n") + indent + quoted(kv.first.Scalar()) + ": ";
+      out += (first ? "" : ",\n") + indent + json_quoted(kv.first.Scalar()) + ": ";
       write_json(kv.second, depth + 1, out);
       first = false;
     }
@@ -46,7 +38,7 @@ void write_json(const YAML::Node& n, int depth, std::string& out) {
     }
     out += "\n" + close + "]";
   } else if (n.IsScalar()) {
-    out += n.Tag() == "!" ? quoted(n.Scalar()) : n.Scalar();
+    out += n.Tag() == "!" ? json_quoted(n.Scalar()) : n.Scalar();
   } else {
     out += "null";
   }

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/json_text.hpp"
 #include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
 
@@ -32,22 +33,6 @@ std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
-}
-
-// A JSON string: quotes and backslashes escaped, control characters as \uXXXX.
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buf;
-      continue;
-    }
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
 }
 
 // Flat [x, y, c, x, y, c, ...] lists (OpenPose's and COCO's) into one frame of `n` keypoints.
@@ -194,7 +179,7 @@ std::string write_keypoints(const KeypointTrack& t) {
                   ", \"width\": " + std::to_string(t.width) + ", \"height\": " + std::to_string(t.height);
   if (t.fov_deg > 0) s += ", \"fov_deg\": " + number(t.fov_deg);
   s += ",\n \"names\": [";
-  for (std::size_t k = 0; k < t.names.size(); ++k) s += (k ? ", " : "") + quoted(t.names[k]);
+  for (std::size_t k = 0; k < t.names.size(); ++k) s += (k ? ", " : "") + json_quoted(t.names[k]);
   s += "],\n \"frames\": [";
   for (std::size_t i = 0; i < t.frames.size(); ++i) {
     const KeypointFrame& f = t.frames[i];
