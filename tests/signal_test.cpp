@@ -1,6 +1,7 @@
-// `mimic train` under SIGTERM and SIGINT, run as a scheduler or a user would: the first signal
-// stops the run within a collection step (an iteration here would take many minutes) and saves
-// the last completed iteration; a second exits at once, leaving the checkpoint on disk intact.
+// `mimic train` and `mimic imitate` under SIGTERM and SIGINT, run as a scheduler or a user would:
+// the first signal stops the run within a collection step (an iteration here would take many
+// minutes) and saves the last completed iteration, and the command exits 128 + the signal; a
+// second exits at once, leaving the checkpoint on disk intact.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -14,6 +15,8 @@
 
 #include "core/file_io.hpp"
 #include "core/zip_integrity.hpp"
+#include "motion/builtin.hpp"
+#include "motion/clip_io.hpp"
 #include "test_data.hpp"
 
 namespace {
@@ -76,7 +79,8 @@ TEST(TrainSignals, SigtermStopsWithinAStepAndASecondSignalExitsAtOnce) {
   const std::optional<int> status = wait_exit(pid, 60);
   const double seconds = std::chrono::duration<double>(Clock::now() - sent).count();
   ASSERT_TRUE(status.has_value()) << "still running a minute after SIGTERM:\n" << text_of(dir / "first.log");
-  EXPECT_EQ(*status, 0) << text_of(dir / "first.log");
+  // Saved and ended cleanly, but not finished: 128 + SIGTERM, so that a script stops there.
+  EXPECT_EQ(*status, 128 + SIGTERM) << text_of(dir / "first.log");
   std::cout << "[ figures  ] exited " << seconds << " s after SIGTERM\n";
   const std::string log = text_of(dir / "first.log");
   EXPECT_NE(log.find("stop requested (stopped during collection, "), std::string::npos) << log;
@@ -97,4 +101,25 @@ TEST(TrainSignals, SigtermStopsWithinAStepAndASecondSignalExitsAtOnce) {
   EXPECT_EQ(*second, 130) << text_of(dir / "second.log");
   EXPECT_NE(text_of(dir / "second.log").find("second stop request: exiting at once"), std::string::npos) << text_of(dir / "second.log");
   EXPECT_EQ(text_of(run / "checkpoint.pt"), checkpoint);
+}
+
+// `mimic imitate` stopped while it trains saves, exits 130 like an interrupted shell command, and
+// makes none of what follows training (model, evaluation, video): a script that runs it stops
+// there instead of going on with a run that did not finish.
+TEST(TrainSignals, AStoppedImitateExits130AndMakesNoModel) {
+  const auto dir = mimic::test::temp_dir("imitate_signals");
+  mimic::save_clip(mimic::builtin_jumping_jack(), dir / "jack.mclip");
+  const auto run = dir / "run";
+  const pid_t pid = start({"imitate", (dir / "jack.mclip").string(), "-o", run.string(), "--samples", "100000000", "--threads", "1"},
+                          dir / "imitate.log");
+  ASSERT_TRUE(wait_for_text(dir / "imitate.log", "iterations of 4096 samples", 120)) << text_of(dir / "imitate.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGINT);
+  const std::optional<int> status = wait_exit(pid, 60);
+  ASSERT_TRUE(status.has_value()) << "still running a minute after SIGINT:\n" << text_of(dir / "imitate.log");
+  EXPECT_EQ(*status, 128 + SIGINT) << text_of(dir / "imitate.log");
+  EXPECT_NE(text_of(dir / "imitate.log").find("saved; `mimic imitate --resume -o "), std::string::npos) << text_of(dir / "imitate.log");
+  EXPECT_TRUE(std::filesystem::exists(run / "checkpoint.pt"));
+  EXPECT_FALSE(std::filesystem::exists(run / "model"));
+  EXPECT_FALSE(std::filesystem::exists(run / "eval.json"));
 }

@@ -349,6 +349,8 @@ void imitate(const ImitateArgs& a) {
   }
   // The model, its evaluation, video and report are rank 0's to make, alone.
   if (!finished || ranks::rank() > 0) return;
+  // Training is done; what follows is quick to make again: Ctrl-C ends it at once.
+  release_stop_signals();
   const int trained_by = ranks::size();
   ranks::continue_alone();
   const fs::path model = export_model(a.out);

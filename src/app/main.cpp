@@ -8,6 +8,7 @@
 #include <new>
 
 #include "app/commands.hpp"
+#include "app/stop_requests.hpp"
 #include "control/navigation.hpp"
 #include "core/blas_kernel.hpp"
 #include "core/error.hpp"
@@ -82,5 +83,8 @@ int main(int argc, char** argv) {
   // A rank that failed ends them all: the others would wait for it in their next sum.
   if (code != 0) mimic::ranks::abort_all(code);
   mimic::ranks::finalize();
+  // A run stopped early by Ctrl-C or SIGTERM saved and ended cleanly, but did not finish: 128 + the
+  // signal (app/stop_requests.hpp), after the ranks have ended together.
+  if (mimic::app::stop_signal() != 0) return 128 + mimic::app::stop_signal();
   return code;
 }

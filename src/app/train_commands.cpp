@@ -109,13 +109,15 @@ void add_train_commands(CLI::App& app) {
                    "(the policy acts as it did until it learns to use them)",
                    args->init_from.string(), join_names(trainer.parts_added_by_init()));
     const RunEnd end = trainer.run();
-    if (end.stopped)
+    if (end.stopped) {
       spdlog::info("stop requested{}: saved iteration {}, the last completed ({} samples), to {}; mimic train --resume -o {} goes on from it",
                    end.interrupted.empty() ? "" : " (" + end.interrupted + ")", end.iteration, trainer.samples(),
                    (opts.run_dir / "checkpoint.pt").string(), opts.run_dir.string());
-    else
+    } else {
+      release_stop_signals();
       spdlog::info("done after {} iterations ({} samples); checkpoint {}", end.iteration, trainer.samples(),
                    (opts.run_dir / "checkpoint.pt").string());
+    }
   });
 
   // A run's checkpoint keeps everything training needs to go on (tens of MB for an imitation run:
