@@ -5,7 +5,8 @@
 # reconstructed (`mimic reconstruct`, its defaults), imitated (`mimic imitate`, the ICCGAN recipe,
 # 10^7 samples), evaluated against the reconstructed clip (the run's eval.json) and against the
 # capture the video was rendered from (eval_truth.json), and filmed beside the source video
-# (side_by_side.mp4; a still of it in docs/figures/video_imitation.png).
+# (side_by_side.mp4; a still of it in docs/figures/video_imitation.png). The three reports go into
+# docs/data/video_imitation/.
 #
 #   scripts/video_imitation.sh        the whole of it; a run already in runs/video_walk is resumed
 #
@@ -36,4 +37,7 @@ fi
 "$mimic" render "$run" -o "$src/skill.mp4" --seconds 10
 ffmpeg -v error -y -stream_loop -1 -i "$src/walk.mp4" -i "$src/skill.mp4" -filter_complex "[0:v][1:v]hstack=inputs=2" -t 10 "$run/side_by_side.mp4"
 ffmpeg -v error -y -i "$run/side_by_side.mp4" -vf "select=eq(n\\,45)" -frames:v 1 docs/figures/video_imitation.png
-echo "wrote $run/side_by_side.mp4 and docs/figures/video_imitation.png"
+# The figures of docs/video.md: the reconstruction's report and the skill's two evaluations.
+mkdir -p docs/data/video_imitation
+cp "$src/reconstruction.json" "$run/eval.json" "$run/eval_truth.json" docs/data/video_imitation/
+echo "wrote $run/side_by_side.mp4, docs/figures/video_imitation.png and docs/data/video_imitation/"
