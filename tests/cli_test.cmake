@@ -468,13 +468,15 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_ok(eval ${OUT}/imitated_model --episodes 1 --trials 1 --clip ${OUT}/imitated_model/clips/jumping_jack_mirrored.mclip)
   expect_in("${LAST_OUT}" "phases of 'jumping_jack_mirrored'")
   # Resumed to a larger budget: trained on, exported, evaluated and reported again, the report
-  # naming the run's own command and recipe; a resumed run keeps its recipe.
-  run_ok(imitate --resume -o ${OUT}/imitate_run --samples 512 --trials 1 --video-seconds 0)
+  # naming the run's own command and recipe, and the threads it started and was resumed with; a
+  # resumed run keeps its recipe.
+  run_ok(imitate --resume -o ${OUT}/imitate_run --samples 512 --trials 1 --video-seconds 0 --threads 2)
   expect_in("${LAST_OUT}" "iter     2/2  samples        512 (100.0 %)")
   file(READ ${OUT}/imitate_run/report.md imitate_report)
   expect_in("${imitate_report}" "# imitate_run: iccgan imitation of jumping_jack_mirrored")
   expect_in("${imitate_report}" "--set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2`, then `mimic imitate --resume -o ")
   expect_in("${imitate_report}" "| samples | 512 (2 iterations of 256) |")
+  expect_in("${imitate_report}" " (started with 1 thread, last resumed with 2) |")
   if(NOT EXISTS ${OUT}/imitate_run/model/networks.mimic)
     message(FATAL_ERROR "mimic imitate --resume exported no model")
   endif()

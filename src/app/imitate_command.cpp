@@ -305,8 +305,11 @@ void write_report(const ImitateArgs& a, bool video, int processes) {
   text += "| | |\n|---|---|\n";
   text += fmt::format("| samples | {:.0f} ({} iteration{} of {}) |\n", samples, t.rows.size(), t.rows.size() == 1 ? "" : "s",
                       processes > 1 ? fmt::format("{} on each of {} ranks", cfg.collect.samples, processes) : std::to_string(cfg.collect.samples));
-  text += fmt::format("| wall time | {} ({} thread{}{}) |\n", duration(wall), cfg.collect.threads, cfg.collect.threads == 1 ? "" : "s",
-                      processes > 1 ? " a rank" : "");
+  // A run resumed with another --threads than it started with says both (the config keeps the first).
+  const int resumed_threads = a.resume && a.threads >= 0 ? resolve_threads(a.threads) : cfg.collect.threads;
+  std::string threads = fmt::format("{} thread{}{}", cfg.collect.threads, cfg.collect.threads == 1 ? "" : "s", processes > 1 ? " a rank" : "");
+  if (resumed_threads != cfg.collect.threads) threads = fmt::format("started with {}, last resumed with {}", threads, resumed_threads);
+  text += fmt::format("| wall time | {} ({}) |\n", duration(wall), threads);
   for (const fs::path& clip : clips) {
     const EvalSummary e = read_eval_json(eval_file(a.out, clip, clips.size()));
     const std::string of = clips.size() == 1 ? "" : " (" + clip.stem().string() + ")";
