@@ -319,6 +319,36 @@ TEST(ImitationEnv, FallenStartsLieWhereTheyLandedAndTheirContactsEndNothing) {
   EXPECT_THROW(make_imitation_env(ch, walk, cfg), Error);
 }
 
+TEST(ImitationEnv, FallenStartsOfAGetUpLieOnItsClipsSideAndLastOneAndAHalfClips) {
+  MIMIC_NEED_HUMANOID();
+  const CharacterModel ch = test::humanoid3d();
+  for (const char* name : {"humanoid3d_getup_facedown.txt", "humanoid3d_getup_faceup.txt"}) {
+    const auto getup = test::humanoid3d_motion(ch, name);
+    ASSERT_TRUE(begins_lying(*getup)) << name;
+    const int side = lying_side(getup->frames.front());
+    ASSERT_NE(side, 0) << name;
+    ImitationEnvConfig cfg;
+    cfg.fallen_starts = 1.0;
+    auto env = make_imitation_env(ch, getup, cfg);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env->action_size());
+    std::mt19937_64 rng(5);
+    int on_side = 0;
+    const int starts = 10;
+    for (int i = 0; i < starts; ++i) {
+      env->reset(rng);
+      ASSERT_TRUE(fallen_start(*env));
+      on_side += side * (env->world().pose().rot[0] * Vec3::UnitX()).z() > 0;
+    }
+    // Dropped from the clip's side, a body may roll on landing; most stay (random sides: half).
+    EXPECT_GE(on_side, 8) << name;
+    // The last episode, limp, ends with its clip's time: 1.5 durations, not max_seconds (10 s).
+    Termination end = Termination::None;
+    for (int steps = 0; end == Termination::None && steps < 1000; ++steps) end = env->step(zero).termination;
+    EXPECT_EQ(end, Termination::ClipEnd) << name;
+    EXPECT_NEAR(env->elapsed(), 1.5 * getup->duration(), 0.05) << name;  // within a control step (1/30 s)
+  }
+}
+
 TEST(ImitationEnv, BuildsAProprioceptiveEnvWithoutAReference) {
   MIMIC_NEED_HUMANOID();
   const CharacterModel ch = test::humanoid3d();

@@ -249,3 +249,30 @@ TEST(Kinematics, HeadingFrameExpressesPointsRelativeToFacing) {
   // A point 1 m along world +Y from the root is 1 m straight ahead.
   EXPECT_TRUE(h.to_local(Vec3(1, 2, 0.9)).isApprox(Vec3(1, 0, 0.9), 1e-12));
 }
+
+TEST(Lying, SideFollowsTheForwardAxisAndAClipBeginsLyingBelowHalfItsHighestRoot) {
+  const Skeleton sk = tiny_skeleton();
+  Pose p = rest_pose(sk, Vec3(0, 0, 0.9));
+  EXPECT_EQ(lying_side(p), 0);  // standing: forward is horizontal
+  // Pitched about Y by -60 degrees the forward axis points 60 degrees up (sin 0.87 > 0.5): face up.
+  p.rot[0] = Quat(Eigen::AngleAxisd(-kPi / 3, Vec3::UnitY()));
+  EXPECT_EQ(lying_side(p), 1);
+  p.rot[0] = Quat(Eigen::AngleAxisd(kPi / 3, Vec3::UnitY()));
+  EXPECT_EQ(lying_side(p), -1);
+  // 20 degrees (sin 0.34) is a lean, not lying; on its side (rolled about X) neither.
+  p.rot[0] = Quat(Eigen::AngleAxisd(kPi / 9, Vec3::UnitY()));
+  EXPECT_EQ(lying_side(p), 0);
+  p.rot[0] = Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitX()));
+  EXPECT_EQ(lying_side(p), 0);
+
+  Clip clip;
+  clip.skeleton = sk;
+  for (const double z : {0.1, 0.5, 0.9}) clip.frames.push_back(rest_pose(sk, Vec3(0, 0, z)));
+  EXPECT_TRUE(begins_lying(clip));  // 0.1 < 0.45
+  clip.frames.front().root_pos.z() = 0.46;
+  EXPECT_FALSE(begins_lying(clip));  // a crouch at half the height: not lying
+  std::reverse(clip.frames.begin(), clip.frames.end());
+  clip.frames.back().root_pos.z() = 0.1;
+  EXPECT_FALSE(begins_lying(clip));  // a fall: it ends lying
+  EXPECT_FALSE(begins_lying(Clip{}));
+}

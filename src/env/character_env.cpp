@@ -252,6 +252,7 @@ Eigen::VectorXd CharacterEnv::reset(const InitState& init) {
   time_ = init.time;
   elapsed_ = 0.0;
   clip_left_ = init.clip_left;
+  lying_ = init.lying;
   source_ = init.source;
   history_.clear();
   // Past poses are placed kinematically only to read their link frames, before the real start.
@@ -341,7 +342,7 @@ std::optional<Pose> CharacterEnv::reference_pose() const {
 }
 
 Termination CharacterEnv::check_termination() const {
-  if (cfg_.early_termination && (fall_contact() || below_reference())) return Termination::Fall;
+  if (cfg_.early_termination && !lying_ && (fall_contact() || below_reference())) return Termination::Fall;
   if (cfg_.max_drift > 0 && drift() > cfg_.max_drift) return Termination::Drift;
   if (reference_ && reference_->loop != LoopMode::Wrap && time_ >= reference_->duration() - 1e-9) return Termination::ClipEnd;
   if (elapsed_ >= clip_left_ - 1e-9) return Termination::ClipEnd;

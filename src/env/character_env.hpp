@@ -85,7 +85,9 @@ struct StartSource {
 // 004: the discriminator sees frames t-3...t+1 from the first step on); empty: the start repeats.
 // `clip_left`: seconds after which the episode ends as ClipEnd, for starts drawn from a non-cyclic
 // clip that is not the env's reference (seed 004 ends a kick where its clip ends). `source`: where
-// such a start came from; empty: drift is measured against the reference, if any.
+// such a start came from; empty: drift is measured against the reference, if any. `lying`: a start
+// on the ground already (a get-up's fallen start): contacts that would end an episode as a fall do
+// not end this one, its time limits still do.
 struct InitState {
   Pose pose;
   PoseVelocity velocity;
@@ -93,6 +95,7 @@ struct InitState {
   std::vector<Pose> past;
   double clip_left = std::numeric_limits<double>::infinity();
   StartSource source = {};
+  bool lying = false;
 };
 // The clip's state at `t`, with the `past` poses at t - past * dt, ..., t - dt (before the clip's
 // start a wrapping clip wraps, others hold their first frame).
@@ -235,6 +238,7 @@ class CharacterEnv : public Env {
   std::unique_ptr<ProjectileLauncher> launcher_;
   double time_ = 0.0, elapsed_ = 0.0;
   double clip_left_ = std::numeric_limits<double>::infinity();  // the start's InitState::clip_left
+  bool lying_ = false;                                           // and InitState::lying
   StartSource source_;                                           // and its source
   double max_step_reward_ = 0.0;
 };

@@ -164,7 +164,6 @@ class ImitationEnv final : public CharacterEnv {
     action_ = action;
     before_ = world().root_position();
     StepResult r = CharacterEnv::step(action);
-    if (fallen() && r.termination == Termination::Fall) r.termination = Termination::None;  // it lies already
     // A new target after each period: this step was rewarded for the old one, the next observes the new.
     const auto periods = [this](double t) { return std::floor((t + 1e-9) / cfg_.goal_period); };
     if (has_goal() && periods(elapsed()) > periods(elapsed() - dt_)) {
@@ -209,22 +208,36 @@ class ImitationEnv final : public CharacterEnv {
   }
 
   // The start just placed, tumbled to a random orientation 1.2 m up, dropped limp for 1.5 s: the
-  // episode starts from where it settled.
+  // episode starts from where it settled. Drawn from a clip that begins lying (a get-up), the
+  // tumble faces the side the clip lies on (its first frame's face up or down: the other side is
+  // the other get-up's), and the episode lasts kFallenClips of the clip's duration (a lying start
+  // otherwise runs to max_seconds, most of it standing after the get-up).
   Eigen::VectorXd fall(std::mt19937_64& rng) {
+    const std::shared_ptr<const Clip> from = start_source().clip;  // the ordinary start's, before it is replaced
+    const int side = from && begins_lying(*from) ? lying_side(from->frames.front()) : 0;
     InitState s{world().pose(), PoseVelocity{}, 0.0, {}};
     s.velocity.joint_ang.assign(world().character().skeleton.joints.size(), Vec3::Zero());
     std::normal_distribution<double> gauss(0.0, 1.0);
-    Quat turn(gauss(rng), gauss(rng), gauss(rng), gauss(rng));  // uniform over rotations
-    if (!(turn.norm() > 1e-9)) turn = Quat::Identity();
-    s.pose.rot[0] = (turn.normalized() * s.pose.rot[0]).normalized();
+    const Quat start = s.pose.rot[0];
+    // A uniformly random orientation; with a side to keep, drawn again until the forward axis points
+    // at least 30 degrees to that side (a quarter of all draws: 64 tries all miss with p < 1e-7).
+    for (int tries = 0; tries < 64; ++tries) {
+      Quat turn(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+      if (!(turn.norm() > 1e-9)) turn = Quat::Identity();
+      s.pose.rot[0] = (turn.normalized() * start).normalized();
+      if (side == 0 || side * (s.pose.rot[0] * Vec3::UnitX()).z() > 0.5) break;
+    }
     s.pose.root_pos = Vec3(s.pose.root_pos.x(), s.pose.root_pos.y(), 1.2);
     CharacterEnv::reset(s);
     const int settle = static_cast<int>(std::lround(kFallSeconds * cfg_.env.sim.control_hz));
     for (int k = 0; k < settle; ++k) world().step_limp();
     InitState lying{world().pose(), world().velocity(), 0.0, {}};
+    lying.lying = true;  // it has fallen already: its contacts end nothing
+    if (from && from->loop != LoopMode::Wrap) lying.clip_left = kFallenClips * from->duration();
     return CharacterEnv::reset(lying);
   }
   static constexpr double kFallSeconds = 1.5;
+  static constexpr double kFallenClips = 1.5;  // a fallen episode's length in its clip's durations
 
   ImitationEnvConfig cfg_;
   long long fallen_episode_ = -1;  // the start (CharacterEnv::starts) that was a fallen one

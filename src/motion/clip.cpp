@@ -13,6 +13,19 @@ double Clip::duration() const {
   return frames.size() < 2 ? 0.0 : static_cast<double>(frames.size() - 1) / fps;
 }
 
+int lying_side(const Pose& pose) {
+  if (pose.rot.empty()) return 0;
+  const double up = (pose.rot[0] * Vec3::UnitX()).z();  // sin of the forward axis's elevation
+  return up > 0.5 ? 1 : up < -0.5 ? -1 : 0;
+}
+
+bool begins_lying(const Clip& clip) {
+  if (clip.frames.empty()) return false;
+  double highest = clip.frames.front().root_pos.z();
+  for (const Pose& f : clip.frames) highest = std::max(highest, f.root_pos.z());
+  return clip.frames.front().root_pos.z() < 0.5 * highest;
+}
+
 Pose rest_pose(const Skeleton& sk, const Vec3& root_pos) {
   Pose p;
   p.root_pos = root_pos;

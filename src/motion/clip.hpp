@@ -53,6 +53,13 @@ struct Clip {
   void validate() const;
 };
 
+// Which side a pose lies on: +1 face up, -1 face down (the root's forward axis, +X, more than 30
+// degrees above or below the horizontal), 0 neither (standing, sitting, on its side).
+int lying_side(const Pose& pose);
+// Whether a clip begins on the ground, as a get-up does: its first frame's root below half the
+// highest the root reaches in the clip (a clip that never rises, or has no frames, does not).
+bool begins_lying(const Clip& clip);
+
 // The identity pose of a skeleton with the root at `root_pos`.
 Pose rest_pose(const Skeleton& sk, const Vec3& root_pos = Vec3::Zero());
 
