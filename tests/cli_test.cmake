@@ -537,6 +537,15 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   if(NOT EXISTS ${OUT}/imitate_cmu/eval.json OR EXISTS ${OUT}/imitate_cmu/demos.csv)
     message(FATAL_ERROR "mimic imitate --method tracking: eval.json expected, and no demonstrations (tracking needs none)")
   endif()
+  # A get-up (its clip begins lying) gets fallen starts; a clip that begins standing does not.
+  run_ok(imitate ${DATA}/deepmimic/motions/humanoid3d_getup_faceup.txt -o ${OUT}/imitate_getup --samples 1 --trials 1
+         --video-seconds 0 --threads 1 --set collect.samples=128 --set collect.envs=2)
+  file(READ ${OUT}/imitate_getup/config.yaml imitate_getup_config)
+  expect_in("${imitate_getup_config}" "fallen_starts: 0.1")
+  file(READ ${OUT}/imitate_run/config.yaml imitate_run_config)
+  if(imitate_run_config MATCHES "fallen_starts")
+    message(FATAL_ERROR "mimic imitate gave fallen starts to a clip that begins standing (the jumping jack)")
+  endif()
   # Bad input: nothing written is lost, nothing half-made is left.
   run_fails("already exists: `mimic imitate --resume -o" imitate ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run)
   run_fails("--method tracking follows one clip" imitate ${OUT}/jj_mirror.mclip ${OUT}/demo/jumping_jack.mclip --method tracking -o ${OUT}/imitate_two)

@@ -27,6 +27,7 @@
 #include "learn/trainer/ranks.hpp"
 #include "learn/trainer/run_log.hpp"
 #include "learn/trainer/trainer.hpp"
+#include "motion/clip.hpp"
 #include "motion/retarget.hpp"
 #include "render/line_chart.hpp"
 
@@ -37,6 +38,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kDefaultCharacter = "deepmimic/characters/humanoid3d.txt";  // the recipes' (under the shared data)
+constexpr double kGetUpFallenStarts = 0.1;  // the share of a get-up's episodes that start fallen (ASE drops 10 %)
 constexpr int kDemonstrationPasses = 8;  // passes over each clip, offset by a fraction of a control step
 
 struct ImitateArgs {
@@ -177,6 +179,10 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     settings.push_back("env.start_clips=[" + start_list + "]");
   }
   if (!a.load.character.empty()) settings.push_back("env.character=" + json_string("character/" + character.filename().string()));
+  // A get-up (clips that begin lying) learns to get up from how characters land too: recovery hands
+  // it a character pushed over, in poses its clips never show (docs/imitate.md).
+  if (a.method != "tracking" && std::any_of(clips.begin(), clips.end(), [](const Clip& c) { return begins_lying(c); }))
+    settings.push_back(fmt::format("env.fallen_starts={}", kGetUpFallenStarts));
   settings.insert(settings.end(), own.begin(), own.end());  // the task's, then the user's last: they win
 
   // Everything is known to fit: write the run (and take it away again if that fails: it was new).
