@@ -11,7 +11,7 @@
 #   THREADS=1 GPS=10 scripts/humanoid_iccgan_ablation.sh & THREADS=1 GPS=0 scripts/humanoid_iccgan_ablation.sh
 # SEEDS (default 1) trains each cell once per seed; seed 1's run is heads<H>_gp<G>, another seed's
 # heads<H>_gp<G>_seed<S>. The table lists every seed of a cell that exists.
-# With ITERATIONS=500, 22–28 min a cell on one core, two such calls side by side (docs/imitation.md
+# With ITERATIONS=500, 22–28 min a cell on one core, two such calls side by side (docs/results/humanoid_iccgan.md
 # has that run's table); needs ../shared/data.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The arms comparison of docs/imitation.md (seed 000 Fig. 3 right): GAIL from the 2-link expert
+# The arms comparison of docs/results/arms.md (seed 000 Fig. 3 right): GAIL from the 2-link expert
 # (models/reacher_ppo) by a 2-link arm seeing the expert's whole observation, a 2-link arm whose
 # discriminator sees only the fingertip-to-target vector, and a 3-link arm with that vector only.
 # Plots the task's reach term (minus the fingertip-target distance per step), which no GAIL run

@@ -7,7 +7,7 @@
 #  - dog_trot: the same objective on DeepMimic's dog (another body, seed 003 section 9);
 #  - backflip_{fsi,asi5,asi10,asi20}: with table/backflip (RSI), Table 2 and Fig. 12 on the backflip;
 #  - walk_{fsi,asi10}: with table/walk (RSI), Table 2 on the walk.
-# Then the tables (mimic table) and learning curves (mimic plot) docs/tracking.md shows:
+# Then the tables (mimic table) and learning curves (mimic plot) docs/results/tracking.md shows:
 # <out>/{table,backflip_init,walk_init}.md and <figures>/{tracking_skills,backflip_init,walk_init}_reward.png.
 # A run whose evaluation is already there is not trained again and one with a checkpoint is
 # resumed (to this call's iterations), so a stopped script picks up where it was.

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Why is the ICCGAN walk at 2·10⁷ samples less robust to cubes than at 7.96 M (docs/tracking.md)?
+# Why is the ICCGAN walk at 2·10⁷ samples less robust to cubes than at 7.96 M (docs/results/tracking.md)?
 # Candidate: PPO shrank its learnt action noise (log σ about −1.66 at 7.96 M, −2.63 at 2·10⁷, from
 # the entropy column), so late training met only small deviations from the clip. Test: train the
 # 2·10⁷-sample walk on with the noise held at the 7.96 M level (`mimic train --init-from`, fixed σ),
 # then measure imitation and robustness as scripts/walk_robustness.sh does.
 # Usage: scripts/walk_fixed_noise.sh [SOURCE_RUN] [OUT_DIR]   (defaults: the walk's run directory,
-# runs/walk_fixed_noise). ITERATIONS (default 750: 3.07 M samples, the run in docs/tracking.md), LOG_STD (default −1.66;
+# runs/walk_fixed_noise). ITERATIONS (default 750: 3.07 M samples, the run in docs/results/tracking.md), LOG_STD (default −1.66;
 # `learnt` leaves the noise to PPO as in the source run: the control with the same samples),
 # THREADS (default 1), TRIALS (default 100) robustness trials a mass at 5, 10 and 20 kg.
 # Resumable: a run with a checkpoint is resumed, an evaluation whose JSON exists is kept. The source

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The walker imitation comparison of docs/imitation.md (seed 002 section 3.2.1, seed 000 Fig. 3
+# The walker imitation comparison of docs/results/walker.md (seed 002 section 3.2.1, seed 000 Fig. 3
 # left): GAIL with (s, a), GAIL with states only, and behavioural cloning, from 5, 10, 25 and 50
 # expert trajectories (models/walker_ppo/expert_50.csv, sub-sampled every 20 steps). Each run is
 # evaluated over 20 episodes with the policy's mean action; scores are normalised by the expert's
