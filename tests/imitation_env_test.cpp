@@ -304,6 +304,11 @@ TEST(ImitationEnv, FallenStartsLieWhereTheyLandedAndTheirContactsEndNothing) {
   }
   EXPECT_LT(lowest_forward, -0.3);  // face down and face up both
   EXPECT_GT(highest_forward, 0.3);
+  // Its time limit still ends it (a looping clip's: max_seconds, 10 s), as a truncation.
+  Termination end = Termination::None;
+  for (int steps = 0; end == Termination::None && steps < 1000; ++steps) end = env->step(zero).termination;
+  EXPECT_EQ(end, Termination::TimeLimit);
+  EXPECT_NEAR(env->elapsed(), 10.0, 0.05);
   // A start given as a state afterwards is an ordinary one: lying, its contacts end it.
   env->reset(env->state_on_clip(*walk, 0.0));
   EXPECT_FALSE(fallen_start(*env));
