@@ -294,7 +294,7 @@ TEST(ImitationEnv, FallenStartsLieWhereTheyLandedAndTheirContactsEndNothing) {
   double lowest_forward = 1, highest_forward = -1;
   for (int i = 0; i < 12; ++i) {
     env->reset(rng);
-    ASSERT_TRUE(fallen_start(*env));
+    ASSERT_TRUE(env->lying_start());
     EXPECT_LT(env->world().root_position().z(), 0.5 * ch.rest_root_height()) << i;  // on the ground
     EXPECT_LT(env->world().velocity().root_lin.norm(), 0.5) << i;                  // and settled
     const double forward = (env->world().pose().rot[0] * Vec3::UnitX()).z();        // < 0: face down
@@ -311,7 +311,7 @@ TEST(ImitationEnv, FallenStartsLieWhereTheyLandedAndTheirContactsEndNothing) {
   EXPECT_NEAR(env->elapsed(), 10.0, 0.05);
   // A start given as a state afterwards is an ordinary one: lying, its contacts end it.
   env->reset(env->state_on_clip(*walk, 0.0));
-  EXPECT_FALSE(fallen_start(*env));
+  EXPECT_FALSE(env->lying_start());
   // Off (the default), the starts are the ones drawn without the key.
   ImitationEnvConfig plain;
   auto a = make_imitation_env(ch, walk, plain);
@@ -319,7 +319,7 @@ TEST(ImitationEnv, FallenStartsLieWhereTheyLandedAndTheirContactsEndNothing) {
   auto b = make_imitation_env(ch, walk, plain);
   std::mt19937_64 r1(9), r2(9);
   EXPECT_TRUE(a->reset(r1).isApprox(b->reset(r2)));
-  EXPECT_FALSE(fallen_start(*a));
+  EXPECT_FALSE(a->lying_start());
   cfg.fallen_starts = 1.5;
   EXPECT_THROW(make_imitation_env(ch, walk, cfg), Error);
 }
@@ -341,7 +341,7 @@ TEST(ImitationEnv, FallenStartsOfAGetUpLieOnItsClipsSideAndLastOneAndAHalfClips)
     const int starts = 10;
     for (int i = 0; i < starts; ++i) {
       env->reset(rng);
-      ASSERT_TRUE(fallen_start(*env));
+      ASSERT_TRUE(env->lying_start());
       on_side += side * (env->world().pose().rot[0] * Vec3::UnitX()).z() > 0;
     }
     // Dropped from the clip's side, a body may roll on landing; most stay (random sides: half).

@@ -173,6 +173,7 @@ class CharacterEnv : public Env {
   double time() const { return time_; }  // on the reference clip: init time + elapsed
   double elapsed() const { return elapsed_; }
   long long starts() const { return starts_; }  // episodes begun (reset(InitState) calls), for tasks that mark one
+  bool lying_start() const { return lying_; }   // the episode under way began lying (InitState::lying)
   const CharacterEnvConfig& config() const { return cfg_; }
   const Terrain& terrain() const { return terrain_; }
   // The terrain's curriculum (config().terrain.levels > 0; seed 002 section 3.1.2, each environment

@@ -148,10 +148,8 @@ class ImitationEnv final : public CharacterEnv {
         ~Sampling() { on = false; }
       } sampling(sampling_);
       observation = CharacterEnv::reset(rng);
-      if (cfg_.fallen_starts > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng) < cfg_.fallen_starts) {
-        observation = fall(rng);
-        fallen_episode_ = starts();
-      }
+      if (cfg_.fallen_starts > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng) < cfg_.fallen_starts)
+        observation = fall(rng);  // CharacterEnv::lying_start() says so
     }
     if (has_goal()) {
       draw_goal();  // after the start is placed: a turn is drawn from where the character faces
@@ -180,7 +178,6 @@ class ImitationEnv final : public CharacterEnv {
   }
 
   bool has_goal() const { return cfg_.goal == ImitationEnvConfig::Goal::Heading; }
-  bool fallen() const { return fallen_episode_ == starts(); }  // this episode began fallen
   Eigen::Vector2d goal_observation() const {
     Eigen::Vector2d out;
     observe_goal(out);
@@ -240,7 +237,6 @@ class ImitationEnv final : public CharacterEnv {
   static constexpr double kFallenClips = 1.5;  // a fallen episode's length in its clip's durations
 
   ImitationEnvConfig cfg_;
-  long long fallen_episode_ = -1;  // the start (CharacterEnv::starts) that was a fallen one
   bool sampling_ = false;          // inside reset(rng): its starts draw no target of their own
   double dt_;
   Eigen::VectorXd action_;
@@ -329,11 +325,6 @@ Eigen::Vector2d goal_observation(const CharacterEnv& env) {
   const auto* h = dynamic_cast<const ImitationEnv*>(&env);
   if (!h || !h->has_goal()) throw Error("goal_observation: not an imitation environment with goal: heading");
   return h->goal_observation();
-}
-
-bool fallen_start(const CharacterEnv& env) {
-  const auto* h = dynamic_cast<const ImitationEnv*>(&env);
-  return h && h->fallen();
 }
 
 }  // namespace mimic

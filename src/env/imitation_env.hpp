@@ -51,7 +51,8 @@ struct ImitationEnvConfig {
   // The episode's ordinary start is turned to a random orientation 1.2 m up and dropped limp (no
   // joint torques) for 1.5 s; it starts from where it settled, and contacts that would end an
   // episode as a fall do not end this one (it has fallen already): the policy learns to get up
-  // from how a character lands, not only from the clip's own poses.
+  // from how a character lands, not only from the clip's own poses. CharacterEnv::lying_start()
+  // tells such an episode.
   double fallen_starts = 0.0;
   // Starts from other motion (switching between skills: a skill trained only from its own clips
   // has never seen the states another skill hands it). This share of Mocap episodes starts at a
@@ -110,8 +111,6 @@ std::unique_ptr<CharacterEnv> make_imitation_env(const CharacterModel& ch, std::
 double goal_heading(const CharacterEnv& env);
 void set_goal_heading(CharacterEnv& env, double yaw);
 bool has_heading_goal(const CharacterEnv& env);
-// Whether the episode under way began from a fallen start (ImitationEnvConfig::fallen_starts).
-bool fallen_start(const CharacterEnv& env);
 // The observation's "goal" part for the target now: its cos and sin in the character's heading frame.
 Eigen::Vector2d goal_observation(const CharacterEnv& env);
 
