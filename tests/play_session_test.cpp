@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include <mujoco/mujoco.h>
+
 #include "control/play_session.hpp"
 #include "error_message.hpp"
 #include "mimic/runtime.hpp"
@@ -97,6 +99,53 @@ TEST(PlaySession, ARequestIsTakenOverAndLoggedAndAFloorPushStartsTheRecovery) {
   EXPECT_EQ(kinds[kinds.size() - 2], "down");
   EXPECT_EQ(kinds.back(), "recovering");
   EXPECT_EQ(fall.events().back().skill, "walk");
+}
+
+TEST(PlaySession, RecoveryHandsTheCharacterToTheGetUpOfTheSideItLiesOnAndSwitchesWhenItRollsOver) {
+  std::filesystem::path down_clip, up_clip;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_getup_facedown.txt", down_clip);
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_getup_faceup.txt", up_clip);
+  // Stand-ins for the get-ups: the walk's networks with a get-up clip each (the side is read from
+  // the clip's first frame); listed face-up first, so that a choice by order would pick it.
+  const auto walk = Skill::load(kModels / "humanoid_walk_iccgan", "walk");
+  const auto up = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + up_clip.string()});
+  const auto down = Skill::load(kModels / "humanoid_walk_iccgan", "down", {"env.clip=" + down_clip.string()});
+  PlayOptions o;
+  o.recovery = {"up", "down"};
+  // The character laid on the ground, still, its pose otherwise the walk's start: the root's
+  // forward axis (+x) turned about y onto +z (face up) or -z (face down), MuJoCo's w, x, y, z.
+  auto lay = [](PlaySession& s, int side) {
+    Controller& c = s.controller();
+    Eigen::VectorXd qpos = Eigen::Map<const Eigen::VectorXd>(c.physics_data()->qpos, c.physics_model()->nq);
+    qpos[2] = 0.15;
+    qpos.segment<4>(3) << std::sqrt(0.5), 0.0, -side * std::sqrt(0.5), 0.0;
+    c.start(c.skill(), qpos, Eigen::VectorXd::Zero(c.physics_model()->nv));
+    EXPECT_EQ(c.lying_side(), side);
+  };
+  for (int side : {1, -1}) {
+    PlaySession s({walk, up, down}, o);
+    EXPECT_EQ(s.controller().lying_side(), 0);  // standing
+    lay(s, side);
+    for (int i = 0; i < 15 && !s.recovering(); ++i) s.step();
+    ASSERT_TRUE(s.recovering()) << "lying for 10 frames is down";
+    EXPECT_EQ(s.controller().skill(), side > 0 ? "up" : "down");
+    EXPECT_EQ(s.events().back().event, "recovering");
+    EXPECT_EQ(s.controller().requested(), "walk");
+  }
+  // Face up, taken by the face-up get-up, then rolled onto its front: after the down rule's 10
+  // frames on that side (not before) the face-down get-up takes over, and the walk is still asked for.
+  PlaySession s({walk, up, down}, o);
+  lay(s, 1);
+  while (!s.recovering()) s.step();
+  ASSERT_EQ(s.controller().skill(), "up");
+  lay(s, -1);
+  for (int i = 0; i < 9; ++i) s.step();
+  EXPECT_EQ(s.controller().skill(), "up") << "9 frames on the other side are not enough";
+  for (int i = 0; i < 3 && s.controller().skill() == "up"; ++i) s.step();
+  EXPECT_EQ(s.controller().skill(), "down");
+  EXPECT_EQ(s.events().back().event, "recovering");
+  EXPECT_EQ(s.events().back().skill, "down");
+  EXPECT_EQ(s.controller().requested(), "walk");
 }
 
 }  // namespace

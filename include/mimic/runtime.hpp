@@ -174,6 +174,10 @@ class Controller {
   double time() const;               // seconds since reset()
   long long steps() const;           // since reset()
   Eigen::Vector3d root_position() const;  // world frame, metres, z up
+  // Which side the character lies on: +1 face up, -1 face down (its root's forward axis more than
+  // 30 degrees above or below the horizontal), 0 neither (standing, on its side, or a skill that
+  // drives no character). Recovery hands a fallen character to the get-up of its side.
+  int lying_side() const;
   // The last policy input and action (raw, before normalisation / PD mapping).
   const Eigen::VectorXd& last_input() const;
   const Eigen::VectorXd& last_action() const;

@@ -337,7 +337,7 @@ void add_play_command(CLI::App& app) {
   play->add_option("models", a->models,
                    "model directories (mimic export): keys 1, 2, ... request them; the first starts. A navigation controller (env: "
                    "navigation) plays alone, driving its skill on its course")->required()->check(CLI::ExistingDirectory);
-  play->add_option("--recover", a->recover, "get-up models: a character that is down is handed to the one whose discriminators score it highest, and back by the rule")
+  play->add_option("--recover", a->recover, "get-up models: a character that is down is handed to the one whose clip begins on the side it lies on (face up or down; then by their discriminators' score), and back by the rule")
       ->check(CLI::ExistingDirectory);
   play->add_option("--rule", a->rule, "when a requested skill takes over: score (its discriminators), value, immediately")
       ->capture_default_str()

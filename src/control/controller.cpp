@@ -13,6 +13,7 @@
 #include "env/character_env.hpp"
 #include "env/context_env.hpp"
 #include "env/imitation_env.hpp"
+#include "motion/clip.hpp"
 
 namespace mimic {
 
@@ -411,6 +412,11 @@ Eigen::Vector3d Controller::root_position() const {
   if (!m || !d || m->nbody < 2) return Eigen::Vector3d::Zero();
   return Eigen::Vector3d(d->xpos[3], d->xpos[4], d->xpos[5]);
 }
+int Controller::lying_side() const {
+  const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
+  return character ? mimic::lying_side(character->world().pose()) : 0;
+}
+
 const Eigen::VectorXd& Controller::last_input() const { return impl_->input; }
 const Eigen::VectorXd& Controller::last_action() const { return impl_->action; }
 const mjModel_* Controller::physics_model() const { return impl_->envs[impl_->active]->physics_model(); }

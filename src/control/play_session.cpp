@@ -5,7 +5,9 @@
 #include <limits>
 #include <numbers>
 
+#include "control/skill_impl.hpp"
 #include "core/error.hpp"
+#include "motion/clip.hpp"
 
 namespace mimic {
 
@@ -15,9 +17,12 @@ PlaySession::PlaySession(std::vector<std::shared_ptr<const Skill>> skills, PlayO
       down_(1.0, options_.down_height, options_.down_frames),
       rng_(options_.seed) {
   controller_.set_switch_rule(options_.rule);
-  for (const std::string& r : options_.recovery)
-    if (std::none_of(skills.begin(), skills.end(), [&](const auto& s) { return s->name() == r; }))
-      throw Error("play: no skill '" + r + "' to recover with (the skills are those given to play)");
+  for (const std::string& r : options_.recovery) {
+    const auto it = std::find_if(skills.begin(), skills.end(), [&](const auto& s) { return s->name() == r; });
+    if (it == skills.end()) throw Error("play: no skill '" + r + "' to recover with (the skills are those given to play)");
+    const auto clips = skill_clips(**it);
+    recovery_sides_.push_back(!clips.empty() && begins_lying(*clips.front()) ? lying_side(clips.front()->frames.front()) : 0);
+  }
   reset();
   events_.clear();
 }
@@ -75,22 +80,31 @@ std::vector<double> PlaySession::scores() {
   return out;
 }
 
-void PlaySession::start_recovery() {
-  // The get-up that fits the character's state: the one whose discriminators score it highest
-  // (seed 004 §6's recovery policy checks its own score); without discriminators, the first.
-  std::string best = options_.recovery.front();
+std::string PlaySession::get_up_for(int side) {
+  const bool any_fits = side != 0 && std::find(recovery_sides_.begin(), recovery_sides_.end(), side) != recovery_sides_.end();
+  std::string best;
   double best_score = -std::numeric_limits<double>::infinity();
-  for (const std::string& r : options_.recovery) {
+  for (std::size_t i = 0; i < options_.recovery.size(); ++i) {
+    if (any_fits && recovery_sides_[i] != side) continue;
+    const std::string& r = options_.recovery[i];
+    if (best.empty()) best = r;
     const auto& skills = controller_.skills();
     const auto it = std::find_if(skills.begin(), skills.end(), [&](const auto& s) { return s->name() == r; });
     if ((*it)->discriminators().empty()) continue;
+    // Seed 004 §6's recovery policy checks its own score: among get-ups of one side, the higher.
     const double score = controller_.score(r);
     if (score > best_score) best_score = score, best = r;
   }
-  controller_.switch_to(best);
+  return best;
+}
+
+void PlaySession::start_recovery() {
+  const std::string get_up = get_up_for(controller_.lying_side());
+  controller_.switch_to(get_up);
   recovering_ = true;
-  log("recovering", best);
-  if (wanted_ != best) controller_.request(wanted_);
+  other_side_frames_ = 0;
+  log("recovering", get_up);
+  if (wanted_ != get_up) controller_.request(wanted_);
 }
 
 void PlaySession::step() {
@@ -108,6 +122,23 @@ void PlaySession::step() {
       controller_.request(wanted_);  // the get-up is not done yet: the skill asked for waits on
     else
       log("dropped", info.dropped);
+  }
+  if (recovering_) {
+    // A get-up that finds the character on the other side (it rolled over, or the fall was read
+    // wrong) for as long as the down rule waits hands it to the get-up of that side.
+    const auto active = std::find(options_.recovery.begin(), options_.recovery.end(), controller_.skill());
+    const int side = controller_.lying_side();
+    const int own = active == options_.recovery.end() ? 0 : recovery_sides_[static_cast<std::size_t>(active - options_.recovery.begin())];
+    other_side_frames_ = own != 0 && side == -own ? other_side_frames_ + 1 : 0;
+    if (other_side_frames_ >= options_.down_frames) {
+      const std::string get_up = get_up_for(side);
+      if (get_up != controller_.skill()) {
+        controller_.switch_to(get_up);
+        log("recovering", get_up);
+        if (wanted_ != get_up) controller_.request(wanted_);
+      }
+      other_side_frames_ = 0;
+    }
   }
   if (down_.update(controller_.root_position().z(), info.ground_contact)) {
     log("down", controller_.skill());

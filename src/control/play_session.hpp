@@ -67,12 +67,18 @@ class PlaySession {
  private:
   void log(const std::string& event, const std::string& skill) { events_.push_back({time_, event, skill}); }
   void start_recovery();
+  // The get-up for a character lying on `side` (Controller::lying_side): among those whose clip
+  // begins on that side (all where none does, or the side is 0), the one whose discriminators
+  // score the state highest; without discriminators, the first of them.
+  std::string get_up_for(int side);
 
   Controller controller_;
   PlayOptions options_;
   DownRule down_;
   std::string wanted_;
   bool recovering_ = false;
+  std::vector<int> recovery_sides_;  // per recovery skill: the side its clip begins lying on, 0 if none
+  int other_side_frames_ = 0;        // recovering: frames in a row lying on the other get-up's side
   double time_ = 0.0;
   std::mt19937_64 rng_;
   std::vector<PlayEvent> events_;
