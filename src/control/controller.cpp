@@ -315,20 +315,21 @@ double Controller::Impl::measure(std::size_t target, SwitchRule::By by) {
   // The active skill's own environment observes the character already (placing it would restart
   // its episode); another skill's is put in the character's state.
   const bool own = target == active;
+  const SkillDiscriminator* d = t.impl().discriminators.empty() ? nullptr : &t.impl().discriminators.front();
+  // A state-transition discriminator also reads the step before: placed first, so that the
+  // target's environment ends in the current state with two placements, not three.
+  const bool pair = by == SwitchRule::By::Score && d && d->transition == "ss";
+  Eigen::VectorXd before;
+  if (pair) before = own ? (frames.size() > 1 ? frames[frames.size() - 2] : frames.back()) : place(target, std::min<std::size_t>(1, states.size() - 1));
   const Eigen::VectorXd now = own ? frames.back() : place(target, 0);
   const Eigen::VectorXd fresh = now.replicate(t.history(), 1);  // a fresh history: the current frame repeated
   if (by == SwitchRule::By::Value) return t.value(Eigen::MatrixXd(fresh.transpose()))[0];
-  const SkillDiscriminator* d = t.impl().discriminators.empty() ? nullptr : &t.impl().discriminators.front();
   if (!d) throw Error("skill '" + t.name() + "' has no discriminator to score with (its networks.mimic holds none)");
   if (d->contexts > 0 || d->context >= 0) throw Error("skill '" + t.name() + "': its discriminator scores under a behaviour context");
   const Eigen::MatrixXd next = now.transpose();
-  Eigen::MatrixXd before = next, acted = Eigen::MatrixXd::Zero(1, t.action_size());
-  if (d->transition == "ss")
-    before = (own ? (frames.size() > 1 ? frames[frames.size() - 2] : frames.back()) : place(target, std::min<std::size_t>(1, states.size() - 1)))
-                 .transpose();
-  if (d->transition == "ss" && !own) (void)place(target, 0);  // left in the current state
+  Eigen::MatrixXd acted = Eigen::MatrixXd::Zero(1, t.action_size());
   if (d->transition == "sa") acted = t.act(Eigen::MatrixXd(fresh.transpose()));
-  return d->switch_scores(before, next, acted, -1)[0];
+  return d->switch_scores(pair ? Eigen::MatrixXd(before.transpose()) : next, next, acted, -1)[0];
 }
 
 void Controller::push(const Eigen::Vector3d& force, double seconds) {
