@@ -9,6 +9,7 @@
 
 #include "control/play_session.hpp"
 #include "error_message.hpp"
+#include "motion/clip_io.hpp"
 #include "mimic/runtime.hpp"
 #include "test_data.hpp"
 
@@ -91,7 +92,8 @@ TEST(PlaySession, ARequestIsTakenOverAndLoggedAndAFloorPushStartsTheRecovery) {
   }
   ASSERT_TRUE(recovering) << "3000 N for 0.3 s floors the character within 5 s";
   EXPECT_EQ(fall.controller().skill(), "walk");
-  EXPECT_EQ(fall.controller().requested(), "run");
+  EXPECT_EQ(fall.wanted(), "run");
+  EXPECT_EQ(fall.controller().requested(), "") << "the run is asked for once the get-up is done, not before";
   std::vector<std::string> kinds;
   for (const PlayEvent& e : fall.events()) kinds.push_back(e.event);
   ASSERT_GE(kinds.size(), 3u);
@@ -130,7 +132,7 @@ TEST(PlaySession, RecoveryHandsTheCharacterToTheGetUpOfTheSideItLiesOnAndSwitche
     ASSERT_TRUE(s.recovering()) << "lying for 10 frames is down";
     EXPECT_EQ(s.controller().skill(), side > 0 ? "up" : "down");
     EXPECT_EQ(s.events().back().event, "recovering");
-    EXPECT_EQ(s.controller().requested(), "walk");
+    EXPECT_EQ(s.wanted(), "walk");
   }
   // Face up, taken by the face-up get-up, then rolled onto its front: after the down rule's 10
   // frames on that side (not before) the face-down get-up takes over, and the walk is still asked for.
@@ -145,7 +147,64 @@ TEST(PlaySession, RecoveryHandsTheCharacterToTheGetUpOfTheSideItLiesOnAndSwitche
   EXPECT_EQ(s.controller().skill(), "down");
   EXPECT_EQ(s.events().back().event, "recovering");
   EXPECT_EQ(s.events().back().skill, "down");
-  EXPECT_EQ(s.controller().requested(), "walk");
+  EXPECT_EQ(s.wanted(), "walk");
+}
+
+TEST(PlaySession, TheSkillAskedForTakesTheCharacterBackOnlyOnceTheGetUpIsDone) {
+  std::filesystem::path up_clip;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_getup_faceup.txt", up_clip);
+  // The stand-in get-up: the walk's networks with the face-up get-up clip (3.77 s). Laid on its
+  // back, the character goes down and the stand-in takes it; then it is given back the walking
+  // state it had (as if got up): up by the down rule after 10 steps, but the get-up is done only
+  // 3.77 s after it took over, and the walk is asked for then, taking over at once (threshold -1).
+  const auto walk = Skill::load(kModels / "humanoid_walk_iccgan", "walk");
+  const auto up = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + up_clip.string()});
+  PlayOptions o;
+  o.recovery = {"up"};
+  PlaySession s({walk, up}, o);
+  for (int i = 0; i < 20; ++i) s.step();
+  Controller& c = s.controller();
+  const Eigen::VectorXd walking_q = Eigen::Map<const Eigen::VectorXd>(c.physics_data()->qpos, c.physics_model()->nq);
+  const Eigen::VectorXd walking_v = Eigen::Map<const Eigen::VectorXd>(c.physics_data()->qvel, c.physics_model()->nv);
+  Eigen::VectorXd lying = walking_q;
+  lying[2] = 0.15;
+  lying.segment<4>(3) << std::sqrt(0.5), 0.0, -std::sqrt(0.5), 0.0;
+  c.start("walk", lying, Eigen::VectorXd::Zero(c.physics_model()->nv));
+  while (!s.recovering()) s.step();
+  ASSERT_EQ(c.skill(), "up");
+  const double took = s.time();
+  c.start("up", walking_q, walking_v);
+  for (int i = 0; i < 15; ++i) s.step();
+  ASSERT_FALSE(s.down()) << "walking again for 15 steps: up";
+  EXPECT_TRUE(s.recovering());
+  EXPECT_EQ(c.requested(), "") << "up, but the get-up has had it " << s.time() - took << " s of its 3.77";
+  while (s.recovering() && s.time() < took + 5.0) s.step();
+  EXPECT_FALSE(s.recovering());
+  EXPECT_EQ(c.skill(), "walk");
+  ASSERT_GE(s.events().size(), 2u);
+  EXPECT_EQ(s.events().back().event, "recovered");
+  const double back = s.events().back().t;
+  EXPECT_GE(back, took + 3.77 - 1e-9);
+  EXPECT_LE(back, took + 3.77 + 2.0 / 30.0) << "at once when done (the request, then the take-over a step later)";
+
+  // The same with a stand-in whose clip ends with the root 2 m up: standing means at least 80 % of
+  // that, which a walking character never reaches, so the get-up is never done.
+  Clip tall = load_motion(up_clip);
+  tall.frames.back().root_pos.z() = 2.0;
+  const std::filesystem::path tall_path = test::temp_dir("play_session_tall") / "tall_getup.mclip";
+  save_clip(tall, tall_path);
+  const auto tall_up = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + tall_path.string()});
+  PlaySession t({walk, tall_up}, o);
+  Controller& tc = t.controller();
+  tc.start("walk", lying, Eigen::VectorXd::Zero(tc.physics_model()->nv));
+  while (!t.recovering()) t.step();
+  const double tall_took = t.time();
+  tc.start("up", walking_q, walking_v);
+  while (t.time() < tall_took + 4.5) t.step();
+  EXPECT_TRUE(t.recovering());
+  EXPECT_EQ(tc.skill(), "up");
+  EXPECT_FALSE(t.down());
+  EXPECT_EQ(tc.requested(), "");
 }
 
 }  // namespace

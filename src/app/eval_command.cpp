@@ -374,7 +374,7 @@ void add_eval_command(CLI::App& app) {
                  "--robustness-seconds spent performing without and with them (seed 004 section 6)")
       ->delimiter(',')
       ->check(CLI::ExistingDirectory);
-  ev->add_option("--recover-tau", args->recover_tau, "the score at which the skill takes the character back from a get-up")
+  ev->add_option("--recover-tau", args->recover_tau, "the score at which the skill takes the character back from a get-up that is done (its clip's duration with the character, and up); -1: at once then (the walk rates a character standing still -0.4 to -0.5)")
       ->capture_default_str();
   ev->add_option("--steering", args->steering, "commanded turns in degrees, e.g. 45,90: how a skill with a heading goal (env.goal: heading) turns")
       ->delimiter(',')

@@ -63,12 +63,12 @@ std::string recovery(const EvalArgs& args) {
   o.seconds = args.robustness_seconds;
   o.trials = args.robustness_trials;
   o.seed = args.seed;
-  o.rule.threshold = args.recover_tau;
+  o.hand_back_threshold = args.recover_tau;
   spdlog::info("  recovery        the fraction of {:.0f} s spent performing under the cubes, without and with the get-ups ({}); {} trials per "
-               "mass; the skill takes the character back at score >= {:.2f}",
-               o.seconds, args.recover.size(), o.trials, o.rule.threshold);
+               "mass; the skill takes the character back when the get-up is done, at score >= {:.2f}",
+               o.seconds, args.recover.size(), o.trials, o.hand_back_threshold);
   std::string json = ", \"recovery\": {\"seconds\": " + json_number(o.seconds) + ", \"trials\": " + std::to_string(o.trials) +
-                     ", \"tau\": " + json_number(o.rule.threshold) + ", \"get_ups\": [";
+                     ", \"tau\": " + json_number(o.hand_back_threshold) + ", \"get_ups\": [";
   for (std::size_t i = 0; i < args.recover.size(); ++i) json += (i ? ", " : "") + json_string(args.recover[i].string());
   json += "], \"masses\": [";
   for (std::size_t i = 0; i < args.masses.size(); ++i) {

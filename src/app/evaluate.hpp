@@ -28,7 +28,7 @@ struct EvalArgs {
   std::vector<std::string> transition_rules{"score", "value", "matching", "immediately"};
   std::vector<double> transition_taus;  // empty: TransitionOptions::thresholds
   std::vector<std::filesystem::path> recover;  // get-up skills: robustness with recovery at each mass of `masses`
-  double recover_tau = 0.2;  // the score at which the skill takes the character back from a get-up
+  double recover_tau = -1.0;  // the score at which the skill takes the character back from a get-up that is done
   bool goal_along_clip = false;  // imitation trials of a skill with a heading goal: commanded along the clip's path
   std::vector<double> steering;  // commanded turns (degrees) for a skill with a heading goal
   int steering_trials = 20;

@@ -75,7 +75,7 @@ const std::vector<CameraSpec> kViews = {
 struct Args {
   std::vector<std::filesystem::path> models, recover;
   std::string rule = "score";
-  double tau = 0.2, time_limit = 2.0;
+  double tau = 0.2, time_limit = 2.0, recover_tau = -1.0;
   int delay = 0;
   std::filesystem::path script, output, json, screenshot;
   double seconds = 0;
@@ -211,6 +211,7 @@ void run_play(const Args& a) {
   o.rule.threshold = a.tau;
   o.rule.delay_steps = a.delay;
   o.rule.time_limit_seconds = a.time_limit;
+  o.hand_back_threshold = a.recover_tau;
   o.push_force = a.push_force;
   o.seed = a.seed;
   // A navigation controller (seed 000's HLC) drives its steered skill on its own course.
@@ -337,8 +338,11 @@ void add_play_command(CLI::App& app) {
   play->add_option("models", a->models,
                    "model directories (mimic export): keys 1, 2, ... request them; the first starts. A navigation controller (env: "
                    "navigation) plays alone, driving its skill on its course")->required()->check(CLI::ExistingDirectory);
-  play->add_option("--recover", a->recover, "get-up models: a character that is down is handed to the one whose clip begins on the side it lies on (face up or down; then by their discriminators' score), and back by the rule")
+  play->add_option("--recover", a->recover, "get-up models: a character that is down is handed to the one whose clip begins on the side it lies on (face up or down; then by their discriminators' score), and back once it is done")
       ->check(CLI::ExistingDirectory);
+  play->add_option("--recover-tau", a->recover_tau,
+                   "the score at which the skill asked for takes the character back from a get-up that is done (its clip's duration with the character, and up); -1: at once then")
+      ->capture_default_str();
   play->add_option("--rule", a->rule, "when a requested skill takes over: score (its discriminators), value, immediately")
       ->capture_default_str()
       ->check(CLI::IsMember({"score", "value", "immediately"}));

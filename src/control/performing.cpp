@@ -23,7 +23,7 @@ PerformingReport measure_performing(const std::vector<std::shared_ptr<const Skil
   if (!(options.seconds > 0) || !std::isfinite(options.seconds) || options.trials < 1)
     throw Error("performing: the seconds must be positive and the trials at least 1");
   PlayOptions play;
-  play.rule = options.rule;
+  play.hand_back_threshold = options.hand_back_threshold;
   play.seed = options.seed;
   for (std::size_t i = 1; i < skills.size(); ++i) play.recovery.push_back(skills[i]->name());
   PlaySession session(skills, play);

@@ -16,7 +16,9 @@ namespace mimic {
 struct PerformingOptions {
   double seconds = 20.0;  // each trial
   int trials = 5;
-  SwitchRule rule;        // how the skill takes the character back from a get-up (the score rule)
+  // The score at which the skill takes the character back from a get-up that is done
+  // (PlayOptions::hand_back_threshold; -1: at once then).
+  double hand_back_threshold = -1.0;
   std::uint64_t seed = 1;
 };
 

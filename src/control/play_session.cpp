@@ -11,6 +11,12 @@
 
 namespace mimic {
 
+namespace {
+// A get-up has stood the character up when its root is at least this share of the height its clip
+// ends at (a kneel, or a crouch on the way up, is lower).
+constexpr double kStandingShare = 0.8;
+}  // namespace
+
 PlaySession::PlaySession(std::vector<std::shared_ptr<const Skill>> skills, PlayOptions options)
     : controller_(skills, options.seed),
       options_(std::move(options)),
@@ -22,6 +28,8 @@ PlaySession::PlaySession(std::vector<std::shared_ptr<const Skill>> skills, PlayO
     if (it == skills.end()) throw Error("play: no skill '" + r + "' to recover with (the skills are those given to play)");
     const auto clips = skill_clips(**it);
     recovery_sides_.push_back(!clips.empty() && begins_lying(*clips.front()) ? lying_side(clips.front()->frames.front()) : 0);
+    recovery_seconds_.push_back(clips.empty() ? 0.0 : clips.front()->duration());
+    recovery_heights_.push_back(clips.empty() || clips.front()->frames.empty() ? 0.0 : kStandingShare * clips.front()->frames.back().root_pos.z());
   }
   reset();
   events_.clear();
@@ -31,7 +39,8 @@ void PlaySession::reset() {
   controller_.switch_to(controller_.skills().front()->name());
   controller_.reset();
   wanted_ = controller_.skill();
-  recovering_ = false;
+  recovering_ = handing_back_ = false;
+  controller_.set_switch_rule(options_.rule);
   down_.restart(controller_.root_position().z());
   log("reset", wanted_);
 }
@@ -41,8 +50,8 @@ bool PlaySession::request(std::size_t index) {
   if (index >= skills.size()) return false;
   wanted_ = skills[index]->name();
   log("request", wanted_);
-  // While a get-up has the character, the request is what it hands back to.
-  controller_.request(wanted_);
+  // While a get-up has the character, the request is what it hands back to when it is done.
+  if (!recovering_ || handing_back_) controller_.request(wanted_);
   return true;
 }
 
@@ -98,13 +107,44 @@ std::string PlaySession::get_up_for(int side) {
   return best;
 }
 
-void PlaySession::start_recovery() {
-  const std::string get_up = get_up_for(controller_.lying_side());
+void PlaySession::start_recovery() { hand_to_get_up(get_up_for(controller_.lying_side())); }
+
+void PlaySession::hand_to_get_up(const std::string& get_up) {
   controller_.switch_to(get_up);
+  controller_.request(get_up);  // asking for the active skill cancels a pending request
+  controller_.set_switch_rule(options_.rule);
   recovering_ = true;
+  handing_back_ = false;
+  get_up_since_ = time_;
   other_side_frames_ = 0;
   log("recovering", get_up);
-  if (wanted_ != get_up) controller_.request(wanted_);
+}
+
+bool PlaySession::get_up_done() const {
+  const auto at = std::find(options_.recovery.begin(), options_.recovery.end(), controller_.skill());
+  if (at == options_.recovery.end()) return true;  // (a get-up asked for by name: the skill asked for has it)
+  const auto i = static_cast<std::size_t>(at - options_.recovery.begin());
+  const Eigen::Vector3d root = controller_.root_position();
+  return !down_.down() && time_ - get_up_since_ >= recovery_seconds_[i] - 1e-9 &&
+         root.z() - controller_.ground_height(root.x(), root.y()) >= recovery_heights_[i];
+}
+
+void PlaySession::hand_back() {
+  handing_back_ = true;
+  if (controller_.skill() == wanted_) {  // the get-up itself was asked for: it keeps the character
+    recovering_ = handing_back_ = false;
+    log("recovered", wanted_);
+    return;
+  }
+  // The score rule at the hand-back's own threshold (a skill without discriminators: at once).
+  const auto& skills = controller_.skills();
+  const auto it = std::find_if(skills.begin(), skills.end(), [&](const auto& s) { return s->name() == wanted_; });
+  SwitchRule back = options_.rule;
+  back.by = (*it)->discriminators().empty() ? SwitchRule::By::Immediately : SwitchRule::By::Score;
+  back.threshold = options_.hand_back_threshold;
+  back.delay_steps = 0;
+  controller_.set_switch_rule(back);
+  controller_.request(wanted_);
 }
 
 void PlaySession::step() {
@@ -113,37 +153,41 @@ void PlaySession::step() {
   if (!info.switched_to.empty()) {
     log("switch", info.switched_to);
     if (recovering_ && info.switched_to == wanted_) {
-      recovering_ = false;
+      recovering_ = handing_back_ = false;
+      controller_.set_switch_rule(options_.rule);
       log("recovered", wanted_);
     }
   }
   if (!info.dropped.empty()) {
     if (recovering_ && info.dropped == wanted_)
-      controller_.request(wanted_);  // the get-up is not done yet: the skill asked for waits on
+      controller_.request(wanted_);  // the skill asked for waits on until a state allows it
     else
       log("dropped", info.dropped);
-  }
-  if (recovering_) {
-    // A get-up that finds the character on the other side (it rolled over, or the fall was read
-    // wrong) for as long as the down rule waits hands it to the get-up of that side.
-    const auto active = std::find(options_.recovery.begin(), options_.recovery.end(), controller_.skill());
-    const int side = controller_.lying_side();
-    const int own = active == options_.recovery.end() ? 0 : recovery_sides_[static_cast<std::size_t>(active - options_.recovery.begin())];
-    other_side_frames_ = own != 0 && side == -own ? other_side_frames_ + 1 : 0;
-    if (other_side_frames_ >= options_.down_frames) {
-      const std::string get_up = get_up_for(side);
-      if (get_up != controller_.skill()) {
-        controller_.switch_to(get_up);
-        log("recovering", get_up);
-        if (wanted_ != get_up) controller_.request(wanted_);
-      }
-      other_side_frames_ = 0;
-    }
   }
   if (down_.update(controller_.root_position().z(), info.ground_contact)) {
     log("down", controller_.skill());
     if (!options_.recovery.empty()) start_recovery();
+    return;
   }
+  if (!recovering_) return;
+  if (handing_back_ && down_.down()) {  // down again before the hand-back: the get-up goes on
+    handing_back_ = false;
+    controller_.request(controller_.skill());
+    controller_.set_switch_rule(options_.rule);
+  }
+  // A get-up that finds the character on the other side (it rolled over, or the fall was read
+  // wrong) for as long as the down rule waits hands it to the get-up of that side.
+  const auto active = std::find(options_.recovery.begin(), options_.recovery.end(), controller_.skill());
+  const int side = controller_.lying_side();
+  const int own = active == options_.recovery.end() ? 0 : recovery_sides_[static_cast<std::size_t>(active - options_.recovery.begin())];
+  other_side_frames_ = own != 0 && side == -own ? other_side_frames_ + 1 : 0;
+  if (other_side_frames_ >= options_.down_frames) {
+    const std::string get_up = get_up_for(side);
+    if (get_up != controller_.skill()) hand_to_get_up(get_up);
+    other_side_frames_ = 0;
+  }
+  // Then, not before, the skill asked for may take the character back.
+  if (!handing_back_ && get_up_done()) hand_back();
 }
 
 }  // namespace mimic
