@@ -169,12 +169,7 @@ void PlaySession::step() {
     if (!options_.recovery.empty()) start_recovery();
     return;
   }
-  if (!recovering_) return;
-  if (handing_back_ && down_.down()) {  // down again before the hand-back: the get-up goes on
-    handing_back_ = false;
-    controller_.request(controller_.skill());
-    controller_.set_switch_rule(options_.rule);
-  }
+  if (!recovering_) return;  // (down again while handing back: start_recovery above began anew)
   // A get-up that finds the character on the other side (it rolled over, or the fall was read
   // wrong) for as long as the down rule waits hands it to the get-up of that side.
   const auto active = std::find(options_.recovery.begin(), options_.recovery.end(), controller_.skill());

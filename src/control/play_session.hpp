@@ -30,9 +30,9 @@ struct PlayOptions {
   int down_frames = 10;
   // The score (seed 004 eq. 6) at which the skill asked for takes the character back from a get-up
   // once the get-up is done (it has had the character for its clip's duration, the character is
-  // up by the down rule and its root at least 80 % of the height the clip ends at); -1: at once then. A skill's discriminators rate a character standing
-  // still low (the shipped walk's: -0.4 to -0.5 on the get-up clips' last frames), so a positive
-  // threshold may never hand back.
+  // up by the down rule and its root at least 80 % of the height the clip ends at); -1: at once
+  // then. A skill's discriminators rate a character standing still low (the shipped walk's: -0.4
+  // to -0.5 on the get-up clips' last frames), so a positive threshold may never hand back.
   double hand_back_threshold = -1.0;
   std::uint64_t seed = 1;             // starts, push directions
 };
