@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
-# Skills trained to take over (docs/interactive.md): the shipped walk fine-tuned with a share of
-# its episodes started from the other shipped skills' clips (`mimic imitate --start-clips`: the
-# run, the kick and the punch; `env.start_clip_share`), into runs/switch_walk_shareNN (a run
-# already there is resumed), then the transition test of the four skills with it in the shipped
-# walk's place, into docs/data/transitions_switch_walk_shareNN.json (the shipped four's is
-# docs/data/transitions.json), and its imitation of the walk into switch_walk_style_shareNN.json.
+# Skills trained to take over (docs/interactive.md): a shipped skill fine-tuned with a share of its
+# episodes started from the other shipped skills' clips (`mimic imitate --start-clips`;
+# `env.start_clip_share`), into runs/switch_SKILL_shareNN (a run already there is resumed), then
+# the transition test of the four skills with it in the shipped one's place, into
+# docs/data/transitions_switch_SKILL_shareNN.json (the shipped four's is docs/data/transitions.json),
+# and its imitation of its own clip into switch_SKILL_style_shareNN.json.
 #
-#   scripts/switching.sh [SHARE]           train (or resume) and measure; SHARE 0.75 (the
-#                                          default, as mimic imitate's: 1.5·10^6 samples) or 0.25 (2·10^6)
-#   scripts/switching.sh measure [SHARE]   measure what the run holds now (its model, or the
-#                                          run's last checkpoint where it was stopped before the end)
+#   scripts/switching.sh [SKILL] [SHARE]           train (or resume) and measure; SKILL walk (the
+#                                                  default), run, kick or punch; SHARE 0.75 (the
+#                                                  default, as mimic imitate's: 1.5·10^6 samples)
+#                                                  or 0.25 (2·10^6)
+#   scripts/switching.sh measure [SKILL] [SHARE]   measure what the run holds now (its model, or the
+#                                                  run's last checkpoint where it was stopped before the end)
 #
 # The training takes 30-40 min at one thread; the measurement about 10 min.
 set -euo pipefail
@@ -19,13 +21,24 @@ mimic=${MIMIC:-build/src/mimic}
 motions=$data/deepmimic/motions
 measure=false
 [ "${1:-}" = measure ] && { measure=true; shift; }
+skill_name=walk
+case ${1:-} in walk|run|kick|punch) skill_name=$1; shift ;; esac
 share=${1:-0.75}
 case $share in
   0.25) samples=2000000 ;;
   0.75) samples=1500000 ;;
-  *) echo "switching.sh: SHARE is 0.25 or 0.75" >&2; exit 1 ;;
+  *) echo "switching.sh: SKILL is walk, run, kick or punch; SHARE is 0.25 or 0.75" >&2; exit 1 ;;
 esac
-name=switch_walk_share${share#0.}
+# The shipped skills, and the clips they imitate.
+declare -A shipped=([walk]=models/humanoid_walk_iccgan [run]=models/humanoid_run_iccgan_straight_loop
+                    [kick]=models/humanoid_kick_iccgan_total [punch]=models/humanoid_punch_iccgan_annealed)
+others=() starts=()
+for k in walk run kick punch; do
+  [ "$k" = "$skill_name" ] && continue
+  others+=("${shipped[$k]}")
+  starts+=("$motions/humanoid3d_$k.txt")
+done
+name=switch_${skill_name}_share${share#0.}
 run=runs/$name
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
 [ -x "$mimic" ] || { echo "switching.sh: build mimic first (cmake --preset default && cmake --build --preset default)" >&2; exit 1; }
@@ -33,8 +46,8 @@ export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
 
 if ! $measure; then
   if [ ! -f "$run/config.yaml" ]; then
-    "$mimic" imitate "$motions/humanoid3d_walk.txt" --from models/humanoid_walk_iccgan -o "$run" --samples $samples --threads 1 \
-      --set env.start_clip_share=$share --start-clips "$motions/humanoid3d_run.txt" "$motions/humanoid3d_kick.txt" "$motions/humanoid3d_punch.txt"
+    "$mimic" imitate "$motions/humanoid3d_$skill_name.txt" --from "${shipped[$skill_name]}" -o "$run" --samples $samples --threads 1 \
+      --set env.start_clip_share=$share --start-clips "${starts[@]}"
   elif [ ! -f "$run/model/networks.mimic" ]; then
     "$mimic" imitate --resume -o "$run"
   fi
@@ -42,8 +55,8 @@ fi
 skill=$run/model
 [ -f "$skill/networks.mimic" ] || skill=$run
 mkdir -p docs/data
-"$mimic" eval "$skill" --episodes 1 --trials 1 \
-  --transitions models/humanoid_run_iccgan_straight_loop,models/humanoid_kick_iccgan_total,models/humanoid_punch_iccgan_annealed \
+style=switch_${skill_name}_style_share${share#0.}
+"$mimic" eval "$skill" --episodes 1 --trials 1 --transitions "$(IFS=,; echo "${others[*]}")" \
   --transition-trials 10 --transition-taus=-0.6,-0.4,-0.2,0,0.2,0.4,0.6,0.8,1 --json docs/data/transitions_$name.json
-"$mimic" eval "$skill" --episodes 1 --trials 20 --clip "$motions/humanoid3d_walk.txt" --json docs/data/${name/switch_walk/switch_walk_style}.json
-echo "wrote docs/data/transitions_$name.json and ${name/switch_walk/switch_walk_style}.json (measured: $skill)"
+"$mimic" eval "$skill" --episodes 1 --trials 20 --clip "$motions/humanoid3d_$skill_name.txt" --json docs/data/$style.json
+echo "wrote docs/data/transitions_$name.json and $style.json (measured: $skill)"
