@@ -44,6 +44,11 @@ run_ok(motion convert ${OUT}/demo/jumping_jack.mclip -o ${OUT}/jj60.mclip --fps 
 run_ok(motion info ${OUT}/jj60.mclip)
 expect_in("${LAST_OUT}" "55 at 60.000 Hz")
 run_ok(motion mirror ${OUT}/demo/jumping_jack.mclip -o ${OUT}/jj_mirror.mclip)
+# A stretch of it (0.3 to 0.6 s: frames 9 to 18 of the 28), which no longer loops.
+run_ok(motion convert ${OUT}/demo/jumping_jack.mclip --start 0.3 --end 0.6 -o ${OUT}/jj_cut.mclip)
+run_ok(motion info ${OUT}/jj_cut.mclip)
+expect_in("${LAST_OUT}" "10 at 30.000 Hz = 0.300 s, loop none")
+run_fails("jumping_jack.mclip: excerpt of clip" motion convert ${OUT}/demo/jumping_jack.mclip --start 0.5 --end 9 -o ${OUT}/jj_bad.mclip)
 
 # Models a user can open in any MuJoCo viewer.
 run_ok(character build --builtin walker -o ${OUT}/walker.xml)

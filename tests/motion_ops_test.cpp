@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "error_message.hpp"
 #include "motion/bvh.hpp"
 #include "motion/deepmimic.hpp"
 #include "motion/kinematics.hpp"
@@ -111,6 +112,30 @@ TEST(Resample, IrregularDeepMimicFramesAreMadeUniform) {
   EXPECT_NEAR(roll.duration(), total, 1e-9);
   EXPECT_EQ(roll.num_frames(), 122);
   EXPECT_NEAR(roll.fps, 1.0 / 0.016666, 0.05);  // adjusted so whole frames span the duration
+}
+
+TEST(Excerpt, KeepsTheFramesWithinTheStretchAndDoesNotLoop) {
+  Clip c;
+  c.name = "ten";
+  c.skeleton = tiny_skeleton();
+  c.fps = 10;
+  c.loop = LoopMode::Wrap;
+  for (int i = 0; i < 11; ++i) c.frames.push_back(rest_pose(c.skeleton, Vec3(0.1 * i, 0, 1)));  // 1 s, x = t
+  // 0.25 to 0.6 s: the frames at 0.3, 0.4, 0.5 and 0.6 s.
+  const Clip e = excerpt(c, 0.25, 0.6);
+  ASSERT_EQ(e.num_frames(), 4);
+  EXPECT_DOUBLE_EQ(e.frames.front().root_pos.x(), 0.1 * 3);
+  EXPECT_DOUBLE_EQ(e.frames.back().root_pos.x(), 0.1 * 6);
+  EXPECT_DOUBLE_EQ(e.fps, 10);
+  EXPECT_EQ(e.loop, LoopMode::None);
+  EXPECT_EQ(e.name, "ten");
+  // Bounds on frames are kept (0.3 s is frame 3 despite 0.3 * 10 = 2.9999...), the whole clip too.
+  EXPECT_EQ(excerpt(c, 0.3, 0.5).num_frames(), 3);
+  EXPECT_EQ(excerpt(c, 0.0, 1.0).num_frames(), 11);
+  for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-0.1, 0.5}, {0.5, 1.2}, {0.6, 0.6}, {0.7, 0.2}})
+    EXPECT_NE(test::error_of([&] { (void)excerpt(c, a, b); }).find("is not a stretch of its 1.000 s"), std::string::npos) << a << " " << b;
+  EXPECT_NE(test::error_of([&] { (void)excerpt(c, 0.31, 0.39); }).find("fewer than two of its frames (at 10.000 Hz)"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { (void)excerpt(c, 0.31, 0.39); }).find("clip 'ten'"), std::string::npos);
 }
 
 TEST(Mirror, PairsByName) {

@@ -93,6 +93,7 @@ struct MotionArgs {
   std::filesystem::path input, output, map, target;
   LoadOptions load;
   double fps = 0.0;
+  double start = std::numeric_limits<double>::quiet_NaN(), end = std::numeric_limits<double>::quiet_NaN();
   int panels = 8;
 };
 
@@ -117,9 +118,16 @@ void add_motion_commands(CLI::App& app) {
   convert->add_option("clip", args->input, "motion file")->required()->check(CLI::ExistingFile);
   convert->add_option("-o,--output", args->output, "output file")->required();
   convert->add_option("--fps", args->fps, "resample to this frame rate first");
+  convert->add_option("--start", args->start, "keep only the frames from this many seconds in (default: the first); the result does not loop");
+  convert->add_option("--end", args->end, "keep only the frames up to this many seconds in (default: the last); the result does not loop");
   add_load_options(*convert, args->load);
   convert->callback([args] {
     Clip clip = load_motion(args->input, args->load);
+    if (!std::isnan(args->start) || !std::isnan(args->end)) try {
+        clip = excerpt(clip, std::isnan(args->start) ? 0.0 : args->start, std::isnan(args->end) ? clip.duration() : args->end);
+      } catch (const Error& e) {
+        throw Error(args->input.string() + ": " + e.what());
+      }
     if (args->fps > 0) clip = resample(clip, args->fps);
     write_motion(clip, args->output);
     spdlog::info("wrote {} ({} frames at {:.3f} Hz)", args->output.string(), clip.num_frames(), clip.fps);

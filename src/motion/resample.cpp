@@ -1,6 +1,9 @@
 #include "motion/resample.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "core/error.hpp"
 
@@ -27,6 +30,33 @@ Clip resample(const Clip& clip, double fps) {
   for (long k = 0; k < intervals; ++k) out.frames.push_back(clip.sample(static_cast<double>(k) / out.fps));
   // The end of the first cycle (not the start of the next one, which a wrap clip jumps to).
   out.frames.push_back(clip.frames.back());
+  return out;
+}
+
+namespace {
+std::string number(double x, bool three_decimals = false) {
+  char text[32];
+  if (three_decimals) std::snprintf(text, sizeof text, "%.3f", x);
+  else std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+}  // namespace
+
+Clip excerpt(const Clip& clip, double start, double end) {
+  const double duration = clip.duration();
+  const std::string what = "excerpt of clip '" + clip.name + "': " + number(start) + " to " + number(end) + " s";
+  if (!std::isfinite(start) || !std::isfinite(end) || start < 0 || end > duration + 1e-9 || !(start < end))
+    throw Error(what + " is not a stretch of its " + number(duration, true) + " s (0 <= start < end <= duration)");
+  const auto first = static_cast<std::size_t>(std::ceil(start * clip.fps - 1e-6));
+  const auto last = std::min(clip.frames.size() - 1, static_cast<std::size_t>(std::floor(end * clip.fps + 1e-6)));
+  if (last <= first)
+    throw Error(what + " holds fewer than two of its frames (at " + number(clip.fps, true) + " Hz)");
+  Clip out;
+  out.name = clip.name;
+  out.skeleton = clip.skeleton;
+  out.fps = clip.fps;
+  out.loop = LoopMode::None;
+  out.frames.assign(clip.frames.begin() + static_cast<std::ptrdiff_t>(first), clip.frames.begin() + static_cast<std::ptrdiff_t>(last) + 1);
   return out;
 }
 
