@@ -136,8 +136,12 @@ Overlay overlay(PlaySession& s, const View& view, const std::string& driver) {
   const Controller& c = s.controller();
   Overlay o;
   o.left = "time\nskill\nasked for\nrule\n";
+  // While a get-up has the character, the skill asked for waits for it to be done before its request.
+  const std::string asked = !c.requested().empty()                        ? c.requested() + " (waiting)"
+                            : s.recovering() && s.wanted() != c.skill() ? s.wanted() + " (after the get-up)"
+                                                                        : "-";
   o.right = fmt::format("{:.1f} s{}\n{}{}\n{}\n{} {}\n", s.time(), view.paused ? " (paused)" : "", c.skill(), s.recovering() ? " (getting up)" : "",
-                        c.requested().empty() ? "-" : c.requested() + " (waiting)", c.switch_rule().by == SwitchRule::By::Score ? "score >=" : c.switch_rule().by == SwitchRule::By::Value ? "value >=" : "at once",
+                        asked, c.switch_rule().by == SwitchRule::By::Score ? "score >=" : c.switch_rule().by == SwitchRule::By::Value ? "value >=" : "at once",
                         c.switch_rule().by == SwitchRule::By::Immediately ? std::string() : fmt::format("{:.2f}", c.switch_rule().threshold));
   const std::vector<double> scores = s.scores();
   for (std::size_t i = 0; i < scores.size(); ++i) {
