@@ -493,6 +493,14 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_ok(imitate ${OUT}/jj_mirror.mclip --task heading --from ${OUT}/imitated_model -o ${OUT}/imitate_steer --samples 1 --trials 1
          --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2
          --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
+  string(FIND "${LAST_OUT}" "was trained in another environment" other_env)
+  if(NOT other_env EQUAL -1)
+    message(FATAL_ERROR "imitate --from warned of another environment where only the task's keys differ:\n${LAST_OUT}")
+  endif()
+  # From a model trained with other environment keys: the fine-tune says which, before it trains.
+  run_ok(imitate ${OUT}/jj_mirror.mclip --from ${OUT}/imitated_model -o ${OUT}/imitate_other_env --samples 1 --trials 1
+         --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=3)
+  expect_in("${LAST_OUT}" "was trained in another environment than the recipe's (max_seconds: 2 in the model, 3 in the run)")
   file(READ ${OUT}/imitate_steer/config.yaml imitate_steer_config)
   expect_in("${imitate_steer_config}" "start_clips: [start_clips/humanoid3d_walk.mclip]")
   if(NOT EXISTS ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)

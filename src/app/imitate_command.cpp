@@ -5,6 +5,7 @@
 // and writes report.md with the learning curve. Several clips give one policy that starts from
 // all of them (seed 004's integrated multi-clip policy).
 #include <spdlog/spdlog.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <chrono>
@@ -135,6 +136,61 @@ std::vector<std::string> task_settings(const ImitateArgs& a) {
   return s;
 }
 
+bool same_yaml(const YAML::Node& a, const YAML::Node& b) {
+  if (a.Type() != b.Type()) return false;
+  if (a.IsScalar()) return a.Scalar() == b.Scalar();
+  if (a.IsSequence()) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!same_yaml(a[i], b[i])) return false;
+    return true;
+  }
+  if (a.IsMap()) {
+    if (a.size() != b.size()) return false;
+    for (const auto& kv : a)
+      if (!b[kv.first.Scalar()] || !same_yaml(kv.second, b[kv.first.Scalar()])) return false;
+    return true;
+  }
+  return true;
+}
+
+// The environment keys a --from model was trained with that the new run sets otherwise (those
+// imitate fills in for every run aside: the clips, the character, the task's; and the clips' own
+// contacts, which follow the clip): what a fine-tune changes under the model, as "pd_limit: total
+// in the model, unset in the run". Empty where they agree or the model's config cannot be read
+// (training then says why).
+std::string env_keys_changed(const fs::path& model, const std::string& run_text) {
+  static const std::vector<std::string> filled{"name",      "character",           "clip",          "start_clips",
+                                               "start_clip_share", "fallen_starts", "goal",        "goal_turn",
+                                               "alive_bonus",      "control_weight", "allow_clip_contacts"};
+  YAML::Node theirs, ours;
+  try {
+    theirs = YAML::Load(read_text_file(model / "config.yaml"))["env"];
+    ours = YAML::Load(run_text)["env"];
+  } catch (const std::exception&) {
+    return "";
+  }
+  if (!theirs.IsMap() || !ours.IsMap()) return "";
+  auto text = [](const YAML::Node& n) {
+    if (!n) return std::string("unset");
+    YAML::Emitter e;
+    e << YAML::Flow << n;
+    return std::string(e.c_str());
+  };
+  std::vector<std::string> keys;
+  for (const YAML::Node* side : {&theirs, &ours})
+    for (const auto& kv : *side)
+      if (std::find(keys.begin(), keys.end(), kv.first.Scalar()) == keys.end()) keys.push_back(kv.first.Scalar());
+  std::string out;
+  for (const std::string& k : keys) {
+    if (std::find(filled.begin(), filled.end(), k) != filled.end()) continue;
+    const YAML::Node a = theirs[k], b = ours[k];
+    if (a && b && same_yaml(a, b)) continue;
+    out += (out.empty() ? "" : "; ") + k + ": " + text(a) + " in the model, " + text(b) + " in the run";
+  }
+  return out;
+}
+
 // A new run: clips (and a given character) copied in, the recipe's config with them, the clips'
 // demonstrations.
 void start_run(const ImitateArgs& a, const Recipe& recipe) {
@@ -202,6 +258,11 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     const fs::path config = a.out / "config.yaml";
     write_file_atomic(config, text);
     spdlog::info("{}: {} clip{} on {}, recipe {}", a.out.string(), clips.size(), clips.size() == 1 ? "" : "s", character.string(), a.method);
+    if (!a.from.empty())
+      if (const std::string changed = env_keys_changed(a.from, text); !changed.empty())
+        spdlog::warn("{} was trained in another environment than the recipe's ({}): the fine-tune trains in the run's; "
+                     "--set env.KEY=VALUE keeps the model's",
+                     a.from.string(), changed);
     if (a.method == "tracking") return;
     const TrainConfig cfg = parse_train_config(text, config.string());
     const std::unique_ptr<Env> env = make_env_factory(cfg.env, YamlReader(cfg.source))();
