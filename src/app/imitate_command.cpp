@@ -27,6 +27,7 @@
 #include "learn/imitation/clip_demonstrations.hpp"
 #include "learn/trainer/ranks.hpp"
 #include "learn/trainer/run_log.hpp"
+#include "learn/trainer/train_config.hpp"
 #include "learn/trainer/trainer.hpp"
 #include "motion/clip.hpp"
 #include "motion/retarget.hpp"
@@ -136,24 +137,6 @@ std::vector<std::string> task_settings(const ImitateArgs& a) {
   return s;
 }
 
-bool same_yaml(const YAML::Node& a, const YAML::Node& b) {
-  if (a.Type() != b.Type()) return false;
-  if (a.IsScalar()) return a.Scalar() == b.Scalar();
-  if (a.IsSequence()) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (!same_yaml(a[i], b[i])) return false;
-    return true;
-  }
-  if (a.IsMap()) {
-    if (a.size() != b.size()) return false;
-    for (const auto& kv : a)
-      if (!b[kv.first.Scalar()] || !same_yaml(kv.second, b[kv.first.Scalar()])) return false;
-    return true;
-  }
-  return true;
-}
-
 // The environment keys a --from model was trained with that the new run sets otherwise (those
 // imitate fills in for every run aside: the clips, the character, the task's; and the clips' own
 // contacts, which follow the clip): what a fine-tune changes under the model, as "pd_limit: total
@@ -171,12 +154,7 @@ std::string env_keys_changed(const fs::path& model, const std::string& run_text)
     return "";
   }
   if (!theirs.IsMap() || !ours.IsMap()) return "";
-  auto text = [](const YAML::Node& n) {
-    if (!n) return std::string("unset");
-    YAML::Emitter e;
-    e << YAML::Flow << n;
-    return std::string(e.c_str());
-  };
+  auto text = [](const YAML::Node& n) { return n ? flow_yaml(n) : std::string("unset"); };
   std::vector<std::string> keys;
   for (const YAML::Node* side : {&theirs, &ours})
     for (const auto& kv : *side)
@@ -185,7 +163,7 @@ std::string env_keys_changed(const fs::path& model, const std::string& run_text)
   for (const std::string& k : keys) {
     if (std::find(filled.begin(), filled.end(), k) != filled.end()) continue;
     const YAML::Node a = theirs[k], b = ours[k];
-    if (a && b && same_yaml(a, b)) continue;
+    if (a && b && config_difference(flow_yaml(a), "the model", flow_yaml(b), "the run").empty()) continue;
     out += (out.empty() ? "" : "; ") + k + ": " + text(a) + " in the model, " + text(b) + " in the run";
   }
   return out;
