@@ -168,6 +168,39 @@ TEST_P(SimStand, ServosHoldAMidStridePoseStably) {
 
 INSTANTIATE_TEST_SUITE_P(Rates, SimStand, ::testing::Values(600.0, 1200.0));
 
+// set_state starts the world afresh: a world that has fallen, with contacts, applied forces and a
+// solver warm start behind it, then set to a state, steps to the same numbers, to the bit, as a new
+// world set to that state (set_state clears what mj_resetData would, without clearing all of
+// MuJoCo's buffer: sim/mujoco_state.hpp).
+TEST(SimWorld, SetStateForgetsEverythingBeforeIt) {
+  std::filesystem::path p;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_walk.txt", p);
+  const CharacterModel ch = test::humanoid3d();
+  const Clip walk = walk_clip(ch);
+  World used(ch, SimConfig{600.0, 30.0});
+  used.set_state(walk.frames[0]);
+  for (int k = 0; k < 45; ++k) {  // a statue in mid-stride topples onto the floor, pushed
+    used.data()->xfrc_applied[6 * 1 + 0] = 200.0;
+    used.data()->qfrc_applied[7] = 30.0;
+    used.step();
+  }
+  ASSERT_GT(used.data()->ncon, 2) << "lying on the floor";
+  const PoseVelocity v = used.velocity();
+  World fresh(ch, SimConfig{600.0, 30.0});
+  for (World* w : {&used, &fresh}) {
+    w->set_state(walk.frames[10], &v);
+    w->set_pd_targets(walk.frames[20]);
+  }
+  const int nq = fresh.model()->nq, nv = fresh.model()->nv;
+  for (int k = 0; k < 30; ++k) {
+    for (World* w : {&used, &fresh}) w->step();
+    for (int i = 0; i < nq; ++i) ASSERT_EQ(used.data()->qpos[i], fresh.data()->qpos[i]) << "qpos " << i << " at step " << k;
+    for (int i = 0; i < nv; ++i) ASSERT_EQ(used.data()->qvel[i], fresh.data()->qvel[i]) << "qvel " << i << " at step " << k;
+  }
+  EXPECT_EQ(used.time(), fresh.time());
+  EXPECT_GT(fresh.data()->ncon, 0) << "the steps compared had contacts to solve";
+}
+
 TEST(SimWorld, BadModelsAndRatesAreClearErrors) {
   const Clip one = [] {
     Clip c;

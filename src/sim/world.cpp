@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "sim/mujoco_load.hpp"
+#include "sim/mujoco_state.hpp"
 
 namespace mimic {
 
@@ -109,7 +110,7 @@ void check_state(const Skeleton& sk, const Pose& pose, const PoseVelocity* vel, 
 void World::set_state(const Pose& pose, const PoseVelocity* vel) {
   const Skeleton& sk = ch_.skeleton;
   check_state(sk, pose, vel, "set_state");
-  mj_resetData(m_, d_);
+  reset_state(m_, d_);
   write_qpos(sk, qpos_, pose, d_);
   if (vel) write_qvel(sk, dof_, pose, *vel, d_);
   set_targets(pose.rot);
@@ -121,7 +122,7 @@ BodyMomentum World::momentum_of(const Pose& pose, const PoseVelocity& vel) const
   check_state(sk, pose, &vel, "momentum_of");
   if (!scratch_) scratch_ = mj_makeData(m_);
   mjData* s = scratch_;
-  mj_resetData(m_, s);
+  reset_state(m_, s);
   write_qpos(sk, qpos_, pose, s);
   write_qvel(sk, dof_, pose, vel, s);
   // The smooth-dynamics stages subtree velocities need; no contacts or forces.
@@ -300,7 +301,7 @@ std::vector<bool> World::ground_contacts_of(const Pose& pose, double gap) const 
   if (pose.rot.size() != ch_.skeleton.joints.size()) throw Error("ground_contacts_of: pose has the wrong number of joints");
   if (!scratch_) scratch_ = mj_makeData(m_);
   mjData* s = scratch_;
-  mj_resetData(m_, s);
+  reset_state(m_, s);
   Pose lowered = pose;
   lowered.root_pos.z() -= gap;  // within `gap` of the floor: into it
   write_qpos(ch_.skeleton, qpos_, lowered, s);
