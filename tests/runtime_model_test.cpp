@@ -8,6 +8,8 @@
 #include <functional>
 #include <random>
 
+#include <mujoco/mujoco.h>
+
 #include "control/dense_kernel.hpp"
 #include "control/skill_impl.hpp"
 #include "core/array_file.hpp"
@@ -335,6 +337,27 @@ TEST(RuntimeController, EnvironmentSettingsApplyAndProjectilesAreNotTakenForAnot
   EXPECT_TRUE(info.episode_over) << "env.max_seconds=1 ends the episode within 40 steps";
   EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"ppo.clip=0.1"}); }), "env keys only"));
   EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"env.no_such_key=1"}); }), "no_such_key"));
+}
+
+// A skill starts from its own clips, but start clips given as settings are where its episodes
+// start (how `mimic eval --set env.start_clips=...` measures starts from other motion): here the
+// face-up get-up's, whose frames lie low (root 0.12-0.84 m), against the walk's upright 0.85 m.
+TEST(RuntimeController, StartClipsGivenAsSettingsAreWhereTheEpisodesStart) {
+  std::filesystem::path getup;
+  MIMIC_REQUIRE_SHARED("deepmimic/motions/humanoid3d_getup_faceup.txt", getup);
+  const std::filesystem::path walk = std::filesystem::path(MIMIC_SOURCE_DIR) / "models" / "humanoid_walk_iccgan";
+  const auto lowest_start = [](const std::shared_ptr<const Skill>& skill) {
+    Controller c({skill});
+    double lowest = 1e9;
+    for (int i = 0; i < 12; ++i) {
+      c.reset();
+      lowest = std::min(lowest, c.physics_data()->qpos[2]);
+    }
+    return lowest;
+  };
+  EXPECT_GT(lowest_start(Skill::load(walk)), 0.8);
+  EXPECT_LT(lowest_start(Skill::load(walk, "", {"env.start_clips=[" + getup.string() + "]", "env.start_clip_share=1"})), 0.6);
+  EXPECT_TRUE(contains(error_of([&] { (void)Skill::load(walk, "", {"env.start_clips=[/nonexistent/start.mclip]"}); }), "/nonexistent/start.mclip"));
 }
 
 // Seed 004 section 5.3's switch: a request is granted after the first step whose state the

@@ -141,10 +141,14 @@ std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, 
   if (!root.IsMap() || !root["env"].IsDefined()) throw Error(config.string() + ": no 'env' section: the environment the skill acts in");
   // A skill acts on its course as configured: a training curriculum's top level, held
   // (env.terrain.levels, sim/terrain.hpp), in play, videos and every measurement; and it starts
-  // from its own clips (other skills' start clips were for training: env.start_clip_share).
+  // from its own clips (other skills' start clips were for training: env.start_clip_share), unless
+  // the settings give start clips (a measurement of starts from other motion).
   YAML::Node env = root["env"];
   if (env.IsMap() && env["terrain"].IsMap() && env["terrain"]["levels"].IsDefined()) env["terrain"]["levels"] = 0;
-  if (env.IsMap()) {
+  const bool starts_given = std::any_of(env_settings.begin(), env_settings.end(), [](const std::string& s) {
+    return s.rfind("env.start_clips=", 0) == 0 || s.rfind("env.start_clip_share=", 0) == 0;
+  });
+  if (env.IsMap() && !starts_given) {
     env.remove("start_clips");
     env.remove("start_clip_share");
   }
