@@ -23,7 +23,7 @@ void reset_state(const mjModel* m, mjData* d) {
   mju_zero(d->act, m->na);
   mju_zero(d->ctrl, m->nu);
   mju_zero(d->qfrc_applied, m->nv);
-mju_zero(d->xfrc_applied, 6 * m->nbody);
+  mju_zero(d->xfrc_applied, 6 * m->nbody);
   mju_zero(d->qacc, m->nv);
   mju_zero(d->qacc_warmstart, m->nv);
   mju_zero(d->act_dot, m->na);
