@@ -29,11 +29,7 @@ void reset_state(const mjModel* m, mjData* d) {
   mju_zero(d->act_dot, m->na);
   mju_zero(d->userdata, m->nuserdata);
   mju_zero(d->sensordata, m->nsensordata);
-  for (int i = 0; i < m->nmocap; ++i) {
-    mju_zero3(d->mocap_pos + 3 * i);
-    mju_unit4(d->mocap_quat + 4 * i);
-  }
-  for (int b = 0; b < m->nbody; ++b) {
+  for (int b = 0; b < m->nbody; ++b) {  // every mocap pose belongs to one body: its pose in the model
     const int id = m->body_mocapid[b];
     if (id < 0) continue;
     mju_copy3(d->mocap_pos + 3 * id, m->body_pos + 3 * b);
