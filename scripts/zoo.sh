@@ -8,8 +8,10 @@
 #   scripts/zoo.sh humanoid_walk   one
 #   scripts/zoo.sh --list          the commands, without running them
 #
-# The run and the punch start from the zoo's walk (`--from`), so the walk comes first. Ctrl-C
-# saves the run; the same command goes on from it.
+# The run, the punch and the walk from standing start from the zoo's walk (`--from`), so the walk
+# comes first. The walk from standing is the walk fine-tuned to set off from where a get-up ends
+# (the get-up clips' last 0.3 s as start clips): the walk a recovery hands the character back to
+# (docs/interactive.md). Ctrl-C saves the run; the same command goes on from it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${MIMIC_DATA:-../shared/data}
@@ -22,14 +24,15 @@ declare -A command=(
   [humanoid_run]="imitate $motions/humanoid3d_run.txt --from runs/zoo/humanoid_walk/model"
   [humanoid_kick]="imitate $motions/humanoid3d_kick.txt"
   [humanoid_punch]="imitate $motions/humanoid3d_punch.txt --from runs/zoo/humanoid_walk/model"
+  [humanoid_walk_from_standing]="imitate $motions/humanoid3d_walk.txt --from runs/zoo/humanoid_walk/model --samples 1500000 --start-clips $motions/humanoid3d_getup_facedown.txt $motions/humanoid3d_getup_faceup.txt --start-clips-last 0.3"
   [humanoid_getup_facedown]="imitate $motions/humanoid3d_getup_facedown.txt"
   [humanoid_getup_faceup]="imitate $motions/humanoid3d_getup_faceup.txt"
   [humanoid_jumping_jack]="imitate runs/zoo/jumping_jack.mclip"
   [dog_trot]="imitate $motions/dog3d_trot.txt --character $data/deepmimic/characters/dog3d.txt --method tracking"
   [walker_ppo]="train configs/walker_ppo.yaml"
 )
-order=(humanoid_walk humanoid_run humanoid_kick humanoid_punch humanoid_getup_facedown humanoid_getup_faceup
-       humanoid_jumping_jack dog_trot walker_ppo)
+order=(humanoid_walk humanoid_run humanoid_kick humanoid_punch humanoid_walk_from_standing humanoid_getup_facedown
+       humanoid_getup_faceup humanoid_jumping_jack dog_trot walker_ppo)
 
 if [[ ${1:-} == --list ]]; then
   for name in "${order[@]}"; do echo "mimic ${command[$name]} -o runs/zoo/$name"; done

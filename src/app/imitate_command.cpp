@@ -30,6 +30,7 @@
 #include "learn/trainer/train_config.hpp"
 #include "learn/trainer/trainer.hpp"
 #include "motion/clip.hpp"
+#include "motion/resample.hpp"
 #include "motion/retarget.hpp"
 #include "render/line_chart.hpp"
 
@@ -50,6 +51,7 @@ struct ImitateArgs {
   std::string task = "none";  // "heading": steering (task_settings)
   LoadOptions load;  // load.character: the character (default: the recipe's humanoid)
   std::vector<fs::path> start_clips;  // --start-clips: other skills' motion to start a share of episodes from
+  double start_clips_last = 0.0;  // --start-clips-last: only each start clip's last seconds (0: all of it)
   std::vector<std::string> settings;  // --set KEY.PATH=VALUE over the recipe, recorded in the run's config
   long long samples = 0;  // 0: the recipe's budget (a resumed run: its own)
   std::uint64_t seed = 1;
@@ -86,6 +88,7 @@ std::string command_line(const ImitateArgs& a) {
   if (!a.start_clips.empty()) {
     line += " --start-clips";
     for (const fs::path& c : a.start_clips) line += " " + c.string();
+    if (a.start_clips_last > 0) line += " --start-clips-last " + fmt::format("{}", a.start_clips_last);
   }
   for (const std::string& setting : a.settings) line += " --set " + setting;
   return line;
@@ -192,7 +195,15 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     throw Error("--character " + character.string() + ": not found");
   }
   const std::vector<Clip> clips = clips_on_character(a, a.clips, character);
-  const std::vector<Clip> start_clips = clips_on_character(a, a.start_clips, character);
+  std::vector<Clip> start_clips = clips_on_character(a, a.start_clips, character);
+  if (a.start_clips_last > 0)
+    for (std::size_t i = 0; i < start_clips.size(); ++i) {
+      const double duration = start_clips[i].duration();
+      if (a.start_clips_last >= duration)
+        throw Error(fmt::format("--start-clips-last {}: {} is only {:.3f} s long; give less than its duration", a.start_clips_last,
+                                a.start_clips[i].string(), duration));
+      start_clips[i] = excerpt(start_clips[i], duration - a.start_clips_last, duration);
+    }
   const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
   std::vector<std::string> own = task_settings(a);
   own.insert(own.end(), a.settings.begin(), a.settings.end());
@@ -448,6 +459,12 @@ void add_imitate_command(CLI::App& app) {
   CLI::Option* start_clips = cmd->add_option("--start-clips", args->start_clips,
                   "other skills' clips: three quarters of the episodes start from them (env.start_clip_share), so that the skill can take over from those skills")
       ->check(CLI::ExistingFile);
+  CLI::Option* start_clips_last =
+      cmd->add_option("--start-clips-last", args->start_clips_last,
+                      "start only from each start clip's last SECONDS: where that skill hands the character over (e.g. 0.3 for the "
+                      "end of a get-up)")
+          ->needs(start_clips)
+          ->check(CLI::PositiveNumber);
   cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
@@ -459,7 +476,8 @@ void add_imitate_command(CLI::App& app) {
                   "run's config");
   cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)")
       ->excludes(method)
-      ->excludes(start_clips);  // a resumed run keeps its own recipe and start clips
+      ->excludes(start_clips)
+      ->excludes(start_clips_last);  // a resumed run keeps its own recipe and start clips
   add_load_options(*cmd, args->load);
   cmd->callback([args] { imitate(*args); });
 }
