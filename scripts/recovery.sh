@@ -8,7 +8,7 @@
 #                                 walking on (docs/videos/recovery_session.mp4 and its events)
 #   scripts/recovery.sh standing  the walk started where a recovery hands it back: the get-up
 #                                 clips' last 0.3 s (runs/standing/), the shipped walk and the walk
-#                                 fine-tuned with them as start clips (`--start-clips-last 0.3`;
+#                                 fine-tuned with them as start clips (`--start-clips CLIP@-0.3`;
 #                                 the zoo's humanoid_walk_from_standing; runs/walk_from_getup_ends,
 #                                 1.5·10^6 samples, about 45 min at one thread; a run already there
 #                                 is resumed), 20 episodes from each: docs/data/standing_*.json
@@ -61,7 +61,7 @@ for part in "${parts[@]}"; do
       run=runs/walk_from_getup_ends
       if [[ ! -f $run/config.yaml ]]; then
         "$mimic" imitate "$motions/humanoid3d_walk.txt" --from "$walk" -o "$run" --samples 1500000 --threads 1 \
-          --start-clips "$motions/humanoid3d_getup_faceup.txt" "$motions/humanoid3d_getup_facedown.txt" --start-clips-last 0.3
+          --start-clips "$motions/humanoid3d_getup_faceup.txt@-0.3" "$motions/humanoid3d_getup_facedown.txt@-0.3"
       elif [[ ! -f $run/model/networks.mimic ]]; then
         "$mimic" imitate --resume -o "$run"
       fi

@@ -492,7 +492,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   # episodes from, copied into the run and its model; the model acts from its own starts.)
   run_ok(imitate ${OUT}/jj_mirror.mclip --task heading --from ${OUT}/imitated_model -o ${OUT}/imitate_steer --samples 1 --trials 1
          --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2
-         --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt --start-clips-last 0.5)
+         --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt@-0.5)
   string(FIND "${LAST_OUT}" "was trained in another environment" other_env)
   if(NOT other_env EQUAL -1)
     message(FATAL_ERROR "imitate --from warned of another environment where only the task's keys differ:\n${LAST_OUT}")
@@ -506,15 +506,18 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   if(NOT EXISTS ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)
     message(FATAL_ERROR "mimic imitate --start-clips: the model has no start_clips/humanoid3d_walk.mclip")
   endif()
-  # --start-clips-last 0.5: the walk's frames within its last 0.5 s, 23 to 38 of 0 to 38 (from 38 - 0.5 * 30.001).
+  # CLIP@-0.5: the walk's frames within its last 0.5 s, 23 to 38 of 0 to 38 (from 38 - 0.5 * 30.001).
   run_ok(motion info ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)
   expect_in("${LAST_OUT}" "16 at 30.001 Hz = 0.500 s, loop none")
-  run_fails("--start-clips-last 2: ${DATA}/deepmimic/motions/humanoid3d_walk.txt is only 1.267 s long" imitate ${OUT}/jj_mirror.mclip
-            --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt --start-clips-last 2 -o ${OUT}/imitate_too_long)
+  run_fails("humanoid3d_walk.txt@-2: 0.000 to 1.267 s is not a stretch of clip 'humanoid3d_walk', which is 1.267 s long" imitate
+            ${OUT}/jj_mirror.mclip --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt@-2 -o ${OUT}/imitate_too_long)
   if(EXISTS ${OUT}/imitate_too_long)
-    message(FATAL_ERROR "mimic imitate wrote ${OUT}/imitate_too_long for a --start-clips-last longer than its clip")
+    message(FATAL_ERROR "mimic imitate wrote ${OUT}/imitate_too_long for a start clip stretch longer than its clip")
   endif()
-  run_fails("--start-clips-last requires --start-clips" imitate ${OUT}/jj_mirror.mclip --start-clips-last 0.3 -o ${OUT}/imitate_no_starts)
+  run_fails("--start-clips ${OUT}/missing.txt@-0.3: no file ${OUT}/missing.txt" imitate ${OUT}/jj_mirror.mclip
+            --start-clips ${OUT}/missing.txt@-0.3 -o ${OUT}/imitate_no_starts)
+  run_fails("--start-clips '${OUT}/jj_mirror.mclip@last': expected FILE, FILE@FROM or FILE@FROM:TO" imitate ${OUT}/jj_mirror.mclip
+            --start-clips ${OUT}/jj_mirror.mclip@last -o ${OUT}/imitate_no_starts)
   # A skill acts from its own starts: the model loads, and everything below uses it, without them.
   file(REMOVE_RECURSE ${OUT}/imitate_steer/model/start_clips)
   expect_in("${imitate_steer_config}" "goal: heading")

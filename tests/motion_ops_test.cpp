@@ -138,6 +138,51 @@ TEST(Excerpt, KeepsTheFramesWithinTheStretchAndDoesNotLoop) {
   EXPECT_NE(test::error_of([&] { (void)excerpt(c, 0.31, 0.39); }).find("clip 'ten'"), std::string::npos);
 }
 
+TEST(ClipStretch, ParsesFileFromAndToAndCountsNegativeTimesFromTheEnd) {
+  const ClipStretch whole = parse_clip_stretch("walk.txt");
+  EXPECT_TRUE(whole.whole);
+  EXPECT_EQ(whole.file, "walk.txt");
+  const ClipStretch last = parse_clip_stretch("dir/a@b.txt@-0.3");  // split at the last '@'
+  EXPECT_EQ(last.file, "dir/a@b.txt");
+  EXPECT_FALSE(last.whole);
+  EXPECT_TRUE(last.to_end);
+  EXPECT_DOUBLE_EQ(last.from, -0.3);
+  const ClipStretch both = parse_clip_stretch("walk.txt@0.25:0.6");
+  EXPECT_DOUBLE_EQ(both.from, 0.25);
+  EXPECT_DOUBLE_EQ(both.to, 0.6);
+  EXPECT_FALSE(both.to_end);
+  for (const char* bad : {"walk.txt@", "walk.txt@x", "walk.txt@0.2:", "walk.txt@0.2:0.5:0.7", "@0.3", "walk.txt@ 0.3", "walk.txt@nan"})
+    EXPECT_NE(test::error_of([&] { (void)parse_clip_stretch(bad); }).find(std::string("'") + bad + "': expected FILE, FILE@FROM or FILE@FROM:TO"),
+              std::string::npos)
+        << bad;
+
+  Clip c;
+  c.name = "ten";
+  c.skeleton = tiny_skeleton();
+  c.fps = 10;
+  c.loop = LoopMode::Wrap;
+  for (int i = 0; i < 11; ++i) c.frames.push_back(rest_pose(c.skeleton, Vec3(0.1 * i, 0, 1)));  // 1 s, x = t
+  EXPECT_EQ(cut(c, whole).num_frames(), 11);
+  EXPECT_EQ(cut(c, whole).loop, LoopMode::Wrap);  // a whole clip is the clip itself
+  // The last 0.3 s: 0.7 to 1.0 s, frames 7 to 10.
+  const Clip end = cut(c, parse_clip_stretch("ten.mclip@-0.3"));
+  ASSERT_EQ(end.num_frames(), 4);
+  EXPECT_DOUBLE_EQ(end.frames.front().root_pos.x(), 0.1 * 7);
+  EXPECT_DOUBLE_EQ(end.frames.back().root_pos.x(), 0.1 * 10);
+  EXPECT_EQ(end.loop, LoopMode::None);
+  // 0.25 to 0.6 s as excerpt gives it; 0.2 s to 0.1 s before the end: frames 2 to 9.
+  EXPECT_DOUBLE_EQ(cut(c, both).frames.front().root_pos.x(), 0.1 * 3);
+  const Clip middle = cut(c, parse_clip_stretch("ten.mclip@0.2:-0.1"));
+  ASSERT_EQ(middle.num_frames(), 8);
+  EXPECT_DOUBLE_EQ(middle.frames.back().root_pos.x(), 0.1 * 9);
+  for (const char* outside : {"ten.mclip@-1.5", "ten.mclip@0.5:1.5", "ten.mclip@0.6:0.2", "ten.mclip@1"})
+    EXPECT_NE(test::error_of([&] { (void)cut(c, parse_clip_stretch(outside)); }).find("is not a stretch of clip 'ten', which is 1.000 s long"),
+              std::string::npos)
+        << outside;
+  EXPECT_NE(test::error_of([&] { (void)cut(c, parse_clip_stretch("ten.mclip@0.31:0.39")); }).find("ten.mclip@0.31:0.39: excerpt of clip 'ten'"),
+            std::string::npos);
+}
+
 TEST(Mirror, PairsByName) {
   std::filesystem::path p;
   MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", p);

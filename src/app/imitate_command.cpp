@@ -50,8 +50,7 @@ struct ImitateArgs {
   std::string method = "iccgan";
   std::string task = "none";  // "heading": steering (task_settings)
   LoadOptions load;  // load.character: the character (default: the recipe's humanoid)
-  std::vector<fs::path> start_clips;  // --start-clips: other skills' motion to start a share of episodes from
-  double start_clips_last = 0.0;  // --start-clips-last: only each start clip's last seconds (0: all of it)
+  std::vector<std::string> start_clips;  // --start-clips: other skills' motion (CLIP or CLIP@FROM[:TO]) to start a share of episodes from
   std::vector<std::string> settings;  // --set KEY.PATH=VALUE over the recipe, recorded in the run's config
   long long samples = 0;  // 0: the recipe's budget (a resumed run: its own)
   std::uint64_t seed = 1;
@@ -87,8 +86,7 @@ std::string command_line(const ImitateArgs& a) {
   if (a.task != "none") line += " --task " + a.task;
   if (!a.start_clips.empty()) {
     line += " --start-clips";
-    for (const fs::path& c : a.start_clips) line += " " + c.string();
-    if (a.start_clips_last > 0) line += " --start-clips-last " + fmt::format("{}", a.start_clips_last);
+    for (const std::string& c : a.start_clips) line += " " + c;
   }
   for (const std::string& setting : a.settings) line += " --set " + setting;
   return line;
@@ -122,6 +120,25 @@ std::vector<Clip> clips_on_character(const ImitateArgs& a, const std::vector<fs:
     clips.push_back(std::move(clip));
   }
   return clips;
+}
+
+// --start-clips' arguments: a file, or a stretch of one (FILE@FROM[:TO]). An existing file is
+// taken whole, whatever its name holds.
+std::vector<ClipStretch> start_clip_stretches(const std::vector<std::string>& texts) {
+  std::vector<ClipStretch> out;
+  for (const std::string& text : texts) {
+    if (fs::is_regular_file(text)) {
+      out.push_back(ClipStretch{text});
+      continue;
+    }
+    try {
+      out.push_back(parse_clip_stretch(text));
+    } catch (const Error& e) {
+      throw Error(std::string("--start-clips ") + e.what());
+    }
+    if (!fs::is_regular_file(out.back().file)) throw Error("--start-clips " + text + ": no file " + out.back().file);
+  }
+  return out;
 }
 
 // The recipe's changes for --task heading (seed 004 eq. 8's goal mixing, docs/imitate.md): the
@@ -195,15 +212,14 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     throw Error("--character " + character.string() + ": not found");
   }
   const std::vector<Clip> clips = clips_on_character(a, a.clips, character);
-  std::vector<Clip> start_clips = clips_on_character(a, a.start_clips, character);
-  if (a.start_clips_last > 0)
-    for (std::size_t i = 0; i < start_clips.size(); ++i) {
-      const double duration = start_clips[i].duration();
-      if (a.start_clips_last >= duration)
-        throw Error(fmt::format("--start-clips-last {}: {} is only {:.3f} s long; give less than its duration", a.start_clips_last,
-                                a.start_clips[i].string(), duration));
-      start_clips[i] = excerpt(start_clips[i], duration - a.start_clips_last, duration);
-    }
+  std::vector<Clip> start_clips;
+  {
+    const std::vector<ClipStretch> stretches = start_clip_stretches(a.start_clips);
+    std::vector<fs::path> files;
+    for (const ClipStretch& s : stretches) files.emplace_back(s.file);
+    start_clips = clips_on_character(a, files, character);
+    for (std::size_t i = 0; i < start_clips.size(); ++i) start_clips[i] = cut(start_clips[i], stretches[i]);
+  }
   const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
   std::vector<std::string> own = task_settings(a);
   own.insert(own.end(), a.settings.begin(), a.settings.end());
@@ -456,15 +472,10 @@ void add_imitate_command(CLI::App& app) {
   cmd->add_option("--task", args->task, "none, or heading: steering, a target direction the skill walks towards (seed 004 eq. 8)")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "heading"}));
-  CLI::Option* start_clips = cmd->add_option("--start-clips", args->start_clips,
-                  "other skills' clips: three quarters of the episodes start from them (env.start_clip_share), so that the skill can take over from those skills")
-      ->check(CLI::ExistingFile);
-  CLI::Option* start_clips_last =
-      cmd->add_option("--start-clips-last", args->start_clips_last,
-                      "start only from each start clip's last SECONDS: where that skill hands the character over (e.g. 0.3 for the "
-                      "end of a get-up)")
-          ->needs(start_clips)
-          ->check(CLI::PositiveNumber);
+  CLI::Option* start_clips = cmd->add_option(
+      "--start-clips", args->start_clips,
+      "other skills' clips: three quarters of the episodes start from them (env.start_clip_share), so that the skill can take over from those "
+      "skills; CLIP@FROM[:TO] a stretch of one in seconds, negative from its end (getup.txt@-0.3: where a get-up hands over)");
   cmd->add_option("--samples", args->samples, "training budget in samples (default: the recipe's, 2e7 as seed 004)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
@@ -476,8 +487,7 @@ void add_imitate_command(CLI::App& app) {
                   "run's config");
   cmd->add_flag("--resume", args->resume, "go on with the run in -o (after a stop, or with a larger --samples)")
       ->excludes(method)
-      ->excludes(start_clips)
-      ->excludes(start_clips_last);  // a resumed run keeps its own recipe and start clips
+      ->excludes(start_clips);  // a resumed run keeps its own recipe and start clips
   add_load_options(*cmd, args->load);
   cmd->callback([args] { imitate(*args); });
 }

@@ -1,8 +1,11 @@
 #include "motion/resample.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "core/error.hpp"
@@ -58,6 +61,55 @@ Clip excerpt(const Clip& clip, double start, double end) {
   out.loop = LoopMode::None;
   out.frames.assign(clip.frames.begin() + static_cast<std::ptrdiff_t>(first), clip.frames.begin() + static_cast<std::ptrdiff_t>(last) + 1);
   return out;
+}
+
+namespace {
+// A whole decimal number (and nothing after it), or nothing.
+std::optional<double> parse_seconds(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+}  // namespace
+
+ClipStretch parse_clip_stretch(const std::string& text) {
+  ClipStretch s;
+  const std::size_t at = text.rfind('@');
+  if (at == std::string::npos) {
+    s.file = text;
+    return s;
+  }
+  s.file = text.substr(0, at);
+  s.whole = false;
+  const std::string times = text.substr(at + 1);
+  const std::size_t colon = times.find(':');
+  const std::optional<double> from = parse_seconds(times.substr(0, colon));
+  const std::optional<double> to = colon == std::string::npos ? std::optional<double>(0.0) : parse_seconds(times.substr(colon + 1));
+  if (s.file.empty() || !from || !to)
+    throw Error("'" + text + "': expected FILE, FILE@FROM or FILE@FROM:TO (seconds; negative ones count back from the clip's end, "
+                "e.g. getup.txt@-0.3 for its last 0.3 s)");
+  s.from = *from;
+  s.to_end = colon == std::string::npos;
+  s.to = s.to_end ? 0.0 : *to;
+  return s;
+}
+
+Clip cut(const Clip& clip, const ClipStretch& stretch) {
+  if (stretch.whole) return clip;
+  const double duration = clip.duration();
+  const double from = stretch.from < 0 ? duration + stretch.from : stretch.from;
+  const double to = stretch.to_end ? duration : stretch.to < 0 ? duration + stretch.to : stretch.to;
+  const std::string what = stretch.file + "@" + number(stretch.from) + (stretch.to_end ? "" : ":" + number(stretch.to));
+  if (from < -1e-9 || to > duration + 1e-9 || !(from < to))
+    throw Error(what + ": " + number(std::max(from, 0.0), true) + " to " + number(to, true) + " s is not a stretch of clip '" + clip.name +
+                "', which is " + number(duration, true) + " s long");
+  try {
+    return excerpt(clip, std::max(from, 0.0), std::min(to, duration));
+  } catch (const Error& e) {
+    throw Error(what + ": " + e.what());
+  }
 }
 
 }  // namespace mimic

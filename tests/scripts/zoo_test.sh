@@ -34,7 +34,7 @@ awk '$2 ~ /^runs\/zoo\/[a-z_]+$/ && $3 != "demo" && $3 != "export" {n += ($1 == 
      END {exit !(most == 3)}' calls || fail "not three skills at a time at most and at least"
 grep -q "imitate /data/deepmimic/motions/humanoid3d_kick.txt -o runs/zoo/humanoid_kick --threads 1" calls || fail "the kick not at one thread"
 grep -q "train configs/walker_ppo.yaml -o runs/zoo/walker_ppo --threads 1" calls || fail "the walker not at one thread"
-grep -q "start-clips /data/deepmimic/motions/humanoid3d_getup_facedown.txt /data/deepmimic/motions/humanoid3d_getup_faceup.txt --start-clips-last 0.3" calls ||
+grep -q "start-clips /data/deepmimic/motions/humanoid3d_getup_facedown.txt@-0.3 /data/deepmimic/motions/humanoid3d_getup_faceup.txt@-0.3" calls ||
   fail "the walk from standing not started from the get-ups' ends"
 
 # 2. Made runs are resumed, not started again; one at a time needs no thread count.
