@@ -485,6 +485,10 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   if(NOT EXISTS ${OUT}/imitate_run/model/networks.mimic)
     message(FATAL_ERROR "mimic imitate --resume exported no model")
   endif()
+  # `mimic export` of such a run carries the clips and demonstrations its config names: it loads.
+  run_ok(export ${OUT}/imitate_run -o ${OUT}/imitate_exported)
+  expect_in("${LAST_OUT}" "copied the run's clips, demos.csv into ${OUT}/imitate_exported")
+  run_ok(eval ${OUT}/imitate_exported --episodes 1 --trials 1)
   run_fails("excludes" imitate --resume --method gail -o ${OUT}/imitate_run)
   run_fails("excludes" imitate --resume --start-clips ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run)
   # Steering (--task heading) from the model above: the goal mixed in, the input widened, the

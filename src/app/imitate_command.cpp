@@ -17,6 +17,7 @@
 #include "app/evaluate.hpp"
 #include "app/policy_video.hpp"
 #include "app/recipes.hpp"
+#include "app/run_data.hpp"
 #include "app/stop_requests.hpp"
 #include "core/config_override.hpp"
 #include "core/error.hpp"
@@ -325,8 +326,9 @@ fs::path export_model(const fs::path& run) {
   fs::remove_all(fresh);
   const std::unique_ptr<Trainer> trainer = Trainer::from_run(run, /*reward_sources=*/true);
   fs::create_directories(fresh);
-  for (const char* own : {"clips", "start_clips", "character", "demos.csv", "config.yaml", "metrics.csv"})
-    if (fs::exists(run / own)) fs::copy(run / own, fresh / own, fs::copy_options::recursive);
+  copy_run_data(run, fresh);
+  for (const char* own : {"config.yaml", "metrics.csv"})
+    if (fs::exists(run / own)) fs::copy(run / own, fresh / own);
   trainer->export_model(fresh / "checkpoint.pt");
   fs::remove_all(model);
   fs::rename(fresh, model);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "app/commands.hpp"
+#include "app/run_data.hpp"
 #include "app/stop_requests.hpp"
 #include "core/config_file.hpp"
 #include "core/error.hpp"
@@ -199,6 +200,10 @@ void add_train_commands(CLI::App& app) {
       provenance += "\n";
     }
     std::filesystem::create_directories(exp->out);
+    // A run of `mimic imitate` names its clips, character and demonstrations from its own directory.
+    std::string copied;
+    for (const std::string& d : copy_run_data(exp->run, exp->out)) copied += (copied.empty() ? "" : ", ") + d;
+    if (!copied.empty()) spdlog::info("copied the run's {} into {}", copied, exp->out.string());
     write_file_atomic(exp->out / "config.yaml", provenance + read_text_file(exp->run / "config.yaml"));
     if (std::filesystem::exists(exp->run / "metrics.csv"))
       write_file_atomic(exp->out / "metrics.csv", read_text_file(exp->run / "metrics.csv"));
