@@ -16,8 +16,7 @@
 #
 # The get-ups are GETUPS (default: models/humanoid_getup_facedown and models/humanoid_getup_faceup,
 # the zoo's: scripts/zoo.sh makes them); the walk is WALK (default models/humanoid_walk_iccgan). A
-# skill is named by its directory, so theirs must differ (two runs' `model` directories collide:
-# link them under other names).
+# skill is named by its directory (a run's RUN/model by its run), so theirs must differ.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}

@@ -550,7 +550,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_ok(train ${OUT}/hlc.yaml -o ${OUT}/hlc_run)
   run_ok(export ${OUT}/hlc_run -o ${OUT}/hlc_run --networks-only)
   run_ok(play ${OUT}/hlc_run --headless --seconds 0.5 --width 64 --height 64 --json ${OUT}/hlc_events.json)
-  expect_in("${LAST_OUT}" "skills: 1 model, its heading commanded by hlc_run every 10 steps")
+  expect_in("${LAST_OUT}" "skills: 1 imitate_steer, its heading commanded by hlc_run every 10 steps")
   run_fails("is a navigation controller: it plays alone" play ${OUT}/hlc_run ${OUT}/imitate_steer/model --headless --seconds 0.5
             --json ${OUT}/never.json)
   run_fails("use --method iccgan or gail, not tracking" imitate ${OUT}/jj_mirror.mclip --task heading --method tracking -o ${OUT}/imitate_steer2)

@@ -225,6 +225,24 @@ TEST(RuntimeModel, TheCommittedWalkerLoadsAndWalksForward) {
   EXPECT_GT(c.root_position().x() - x0, 0.5) << "the trained walker walks forward";
 }
 
+TEST(RuntimeModel, ASkillIsNamedByItsDirectoryOrByTheRunOfAModelDirectory) {
+  EXPECT_EQ(Skill::default_name("models/humanoid_walk_iccgan"), "humanoid_walk_iccgan");
+  EXPECT_EQ(Skill::default_name("models/humanoid_walk_iccgan/"), "humanoid_walk_iccgan");
+  EXPECT_EQ(Skill::default_name("runs/my_walk/model"), "my_walk");  // what mimic imitate writes
+  EXPECT_EQ(Skill::default_name("runs/my_walk/model/"), "my_walk");
+  EXPECT_EQ(Skill::default_name("runs/my_walk/model/../model"), "my_walk");
+  EXPECT_EQ(Skill::default_name("/model"), "model");  // no run above it
+  EXPECT_EQ(Skill::default_name("runs/my_walk/models"), "models");
+  // Skill::load names a skill so; a name given wins.
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "named_run" / "model";
+  std::filesystem::remove_all(dir.parent_path());
+  std::filesystem::create_directories(dir.parent_path());
+  std::filesystem::copy(kWalker, dir, std::filesystem::copy_options::recursive);
+  EXPECT_EQ(Skill::load(dir)->name(), "named_run");
+  EXPECT_EQ(Skill::load(dir, "walker")->name(), "walker");
+  std::filesystem::remove_all(dir.parent_path());
+}
+
 TEST(RuntimeModel, AControllerRefusesSkillsOfAnotherCharacterAndUnknownSwitches) {
   const auto walker = Skill::load(kWalker);
   const auto other = Skill::load(edited_model("twin", [](auto&) {}), "twin");

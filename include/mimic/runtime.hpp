@@ -28,7 +28,7 @@ namespace mimic {
 // was trained in (config.yaml's `env`: the character, its observations and its action mapping).
 class Skill {
  public:
-  // A model directory (mimic export). `name` defaults to the directory's name. `env_settings`
+  // A model directory (mimic export). `name` defaults to default_name(model_dir). `env_settings`
   // change the skill's environment as `mimic eval --set` does ("env.max_seconds=30"; env keys
   // only). Throws std::runtime_error (mimic::Error) naming the file and the problem: a missing
   // file, a damaged or truncated one (CRC-32), a newer format, a layer of the wrong shape, a
@@ -36,6 +36,9 @@ class Skill {
   // environment, a setting that does not fit it.
   static std::shared_ptr<const Skill> load(const std::filesystem::path& model_dir, const std::string& name = "",
                                            const std::vector<std::string>& env_settings = {});
+  // The name of a model loaded without one: its directory's, or for a directory named `model`
+  // (the one `mimic imitate` writes in its run: runs/my_walk/model) the run's (my_walk).
+  static std::string default_name(const std::filesystem::path& model_dir);
   struct Impl;
   explicit Skill(std::unique_ptr<Impl> impl);  // what load() builds
   ~Skill();

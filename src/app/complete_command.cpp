@@ -43,7 +43,7 @@ void run(const CompleteArgs& a) {
     skills.push_back(Skill::load(dir));
     for (std::size_t i = 0; i + 1 < skills.size(); ++i)
       if (skills[i]->name() == skills.back()->name())
-        throw Error("complete: two skills are named '" + skills.back()->name() + "' (a skill is named by its directory; give each model once)");
+        throw Error("complete: two skills are named '" + skills.back()->name() + "' (a skill is named by its directory, a run's RUN/model by its run; give each model once)");
   }
   const MotionCompletion completion(skills);
 

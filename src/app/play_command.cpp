@@ -204,10 +204,9 @@ void run_play(const Args& a) {
   std::vector<std::string> names_seen;
   for (const auto& list : {&a.models, &a.recover})
     for (const auto& dir : *list) {
-      const std::filesystem::path full = std::filesystem::absolute(dir).lexically_normal();  // (as Skill::load names it)
-      const std::string name = full.has_filename() ? full.filename().string() : full.parent_path().filename().string();
+      const std::string name = Skill::default_name(dir);
       if (std::find(names_seen.begin(), names_seen.end(), name) != names_seen.end())
-        throw Error("play: two skills are named '" + name + "' (a skill is named by its directory; give each model once)");
+        throw Error("play: two skills are named '" + name + "' (a skill is named by its directory, a run's RUN/model by its run; give each model once)");
       names_seen.push_back(name);
     }
   PlayOptions o;

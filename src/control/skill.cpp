@@ -117,6 +117,13 @@ FloatMatrix Skill::Impl::normalised(const Eigen::MatrixXd& inputs) const {
 Skill::Skill(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Skill::~Skill() = default;
 
+std::string Skill::default_name(const std::filesystem::path& model_dir) {
+  std::filesystem::path full = std::filesystem::absolute(model_dir).lexically_normal();
+  if (!full.has_filename()) full = full.parent_path();  // "runs/walk/" names "walk"
+  if (full.filename() == "model" && full.has_parent_path() && full.parent_path().has_filename()) return full.parent_path().filename().string();
+  return full.filename().string();
+}
+
 std::shared_ptr<const Skill> Skill::load(const std::filesystem::path& model_dir, const std::string& name, const std::vector<std::string>& env_settings) {
   const std::filesystem::path config = model_dir / "config.yaml", networks = model_dir / kRuntimeFileName;
   if (!std::filesystem::is_directory(model_dir)) throw Error(model_dir.string() + ": no such model directory");
@@ -132,9 +139,7 @@ std::shared_ptr<const Skill> load_skill(const std::filesystem::path& model_dir, 
   const std::filesystem::path config = model_dir / "config.yaml";
   for (const std::string& setting : env_settings)
     if (setting.rfind("env.", 0) != 0) throw Error("setting '" + setting + "': a skill's environment takes env keys only (env.KEY=VALUE)");
-  std::string skill_name = name;
-  if (skill_name.empty()) skill_name = std::filesystem::absolute(model_dir).lexically_normal().filename().string();
-  if (skill_name.empty()) skill_name = std::filesystem::absolute(model_dir).lexically_normal().parent_path().filename().string();
+  const std::string skill_name = name.empty() ? Skill::default_name(model_dir) : name;
   const YamlReader reader(config.string());
   const YAML::Node root =
       reader.parse(override_config(read_text_file(config, kMaxYamlBytes), config.string(), env_settings), "invalid YAML");

@@ -37,6 +37,15 @@ done
 [ -s "$out/session.mp4" ] || fail "no video"
 grep -q "wrote $out/session.mp4 (36 frames)" "$out/headless.log" || { cat "$out/headless.log"; fail "1.2 s at 30 Hz is 36 frames"; }
 
+# Skills in runs' model directories (what mimic imitate writes: RUN/model) are named by their runs.
+mkdir -p "$out/my_walk" "$out/my_run"
+ln -s "$walk" "$out/my_walk/model" && ln -s "$run" "$out/my_run/model"
+printf '0.1 2\n' > "$out/runs.txt"
+"$mimic" play "$out/my_walk/model" "$out/my_run/model" --tau -1 --headless --script "$out/runs.txt" --seconds 0.3 --json "$out/runs.json" \
+  > "$out/runs.log" 2>&1 || { cat "$out/runs.log"; fail "mimic play RUN/model RUN/model"; }
+events=$(tr -d ' \n' < "$out/runs.json")
+[[ $events == *'{"t":0.1,"event":"request","skill":"my_run"}'* ]] || fail "RUN/model is not named by its run: $events"
+
 # A script's times count the frames shown, paused ones too: paused from 0.2 s to 0.5 s, the
 # request at 0.6 s comes after 0.3 s of the session.
 printf '0.2 space\n0.5 space\n0.6 2\n' > "$out/paused.txt"
