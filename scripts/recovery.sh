@@ -6,22 +6,24 @@
 #                                 and docs/figures/recovery.png (about 15 min on one core)
 #   scripts/recovery.sh session   the scripted session: the walk pushed down, got up by a get-up,
 #                                 walking on (docs/videos/recovery_session.mp4 and its events)
-#   scripts/recovery.sh standing  the walk started where a recovery hands it back: the get-up
-#                                 clips' last 0.3 s (runs/standing/), the shipped walk and the walk
-#                                 fine-tuned with them as start clips (`--start-clips CLIP@-0.3`;
-#                                 the zoo's humanoid_walk_from_standing; runs/walk_from_getup_ends,
-#                                 1.5·10^6 samples, about 45 min at one thread; a run already there
-#                                 is resumed), 20 episodes from each: docs/data/standing_*.json
+#   scripts/recovery.sh standing  the walk started where a recovery hands it back, the get-up
+#                                 clips' last 0.3 s: the shipped walk and the walk fine-tuned with
+#                                 them as start clips (`--start-clips CLIP@-0.3`), 20 episodes from
+#                                 each: docs/data/standing_*.json. The fine-tune is
+#                                 models/humanoid_walk_iccgan_from_standing, made by its one command
+#                                 into runs/ where it is not there (1.5·10^6 samples, about 45 min
+#                                 at one thread; a run already there is resumed)
 #   scripts/recovery.sh           curve and session
 #
 # The get-ups are GETUPS (default: models/humanoid_getup_facedown and models/humanoid_getup_faceup,
-# the zoo's: scripts/zoo.sh makes them); the walk is WALK (default models/humanoid_walk_iccgan). A
+# the zoo's: scripts/zoo.sh makes them); the walk is WALK (default
+# models/humanoid_walk_iccgan_from_standing, the walk that sets off from a get-up's end). A
 # skill is named by its directory (a run's RUN/model by its run), so theirs must differ.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
 mimic=build/src/mimic
-walk=${WALK:-models/humanoid_walk_iccgan}
+walk=${WALK:-models/humanoid_walk_iccgan_from_standing}
 motions=${MIMIC_DATA:-../shared/data}/deepmimic/motions
 read -r -a getups <<<"${GETUPS:-models/humanoid_getup_facedown models/humanoid_getup_faceup}"
 parts=("$@")
@@ -30,6 +32,7 @@ if [[ " ${parts[*]} " == *" curve "* || " ${parts[*]} " == *" session "* ]]; the
   for g in "${getups[@]}"; do
     [[ -f $g/networks.mimic ]] || { echo "recovery.sh: no get-up model in $g (scripts/zoo.sh makes them)" >&2; exit 2; }
   done
+  [[ -f $walk/networks.mimic ]] || { echo "recovery.sh: no walk model in $walk (models/README.md has its command)" >&2; exit 2; }
 fi
 mkdir -p docs/data docs/figures docs/videos
 for part in "${parts[@]}"; do
@@ -48,32 +51,29 @@ for part in "${parts[@]}"; do
         --push-force 900 -o docs/videos/recovery_session.mp4 --json docs/data/recovery_session.json
       ;;
     standing)
-      mkdir -p runs/standing
-      ends=()
-      for side in faceup facedown; do
-        clip=$motions/humanoid3d_getup_$side.txt
-        seconds=$("$mimic" motion info "$clip" | awk '/^frames/ {for (i = 1; i < NF; ++i) if ($(i + 1) == "s,") print $i}')
-        end=runs/standing/getup_${side}_end.mclip
-        "$mimic" motion convert "$clip" --start "$(awk -v s="$seconds" 'BEGIN {printf "%.3f", s - 0.3}')" -o "$end"
-        ends+=("$end")
-      done
-      run=runs/walk_from_getup_ends
-      if [[ ! -f $run/config.yaml ]]; then
-        "$mimic" imitate "$motions/humanoid3d_walk.txt" --from "$walk" -o "$run" --samples 1500000 --threads 1 \
-          --start-clips "$motions/humanoid3d_getup_faceup.txt@-0.3" "$motions/humanoid3d_getup_facedown.txt@-0.3"
-      elif [[ ! -f $run/model/networks.mimic ]]; then
-        "$mimic" imitate --resume -o "$run"
+      # The walk from standing where it is not in models/ yet: its one command (models/README.md).
+      fine=models/humanoid_walk_iccgan_from_standing
+      if [[ ! -f $fine/networks.mimic ]]; then
+        run=runs/humanoid_walk_iccgan_from_standing
+        if [[ ! -f $run/config.yaml ]]; then
+          "$mimic" imitate "$motions/humanoid3d_walk.txt" --from models/humanoid_walk_iccgan --samples 1500000 \
+            --start-clips "$motions/humanoid3d_getup_faceup.txt@-0.3" "$motions/humanoid3d_getup_facedown.txt@-0.3" -o "$run" --threads 1
+        elif [[ ! -f $run/model/networks.mimic ]]; then
+          "$mimic" imitate --resume -o "$run"
+        fi
+        fine=$run/model
       fi
+      # Both walks started from the get-up ends the fine-tune trained with (its start_clips/).
       for who in shipped fine_tuned; do
-        model=$walk
-        [[ $who == fine_tuned ]] && model=$run/model
+        model=models/humanoid_walk_iccgan
+        [[ $who == fine_tuned ]] && model=$fine
         for side in faceup facedown; do
-          "$mimic" eval "$model" --episodes 20 --trials 1 --set "env.start_clips=[runs/standing/getup_${side}_end.mclip]" \
+          "$mimic" eval "$model" --episodes 20 --trials 1 --set "env.start_clips=[$fine/start_clips/humanoid3d_getup_$side.mclip]" \
             --set env.start_clip_share=1 --json "docs/data/standing_${who}_from_${side}.json"
         done
       done
       # The fine-tune's own walk, by the imitation protocol.
-      "$mimic" eval "$run/model" --episodes 1 --trials 20 --clip "$motions/humanoid3d_walk.txt" --json docs/data/standing_fine_tuned_style.json
+      "$mimic" eval "$fine" --episodes 1 --trials 20 --clip "$motions/humanoid3d_walk.txt" --json docs/data/standing_fine_tuned_style.json
       ;;
     *) echo "recovery.sh: unknown part '$part' (curve, session, standing)" >&2; exit 2 ;;
   esac
