@@ -43,6 +43,17 @@ double max_pose_difference(const Clip& a, const Clip& b) {
   return worst;
 }
 
+// "ten": 11 frames at 10 Hz, one looping second, the root at x = t.
+Clip one_second_clip() {
+  Clip c;
+  c.name = "ten";
+  c.skeleton = tiny_skeleton();
+  c.fps = 10;
+  c.loop = LoopMode::Wrap;
+  for (int i = 0; i < 11; ++i) c.frames.push_back(rest_pose(c.skeleton, Vec3(0.1 * i, 0, 1)));
+  return c;
+}
+
 }  // namespace
 
 TEST(Resample, LinearRootMotionIsReproducedExactly) {
@@ -115,12 +126,7 @@ TEST(Resample, IrregularDeepMimicFramesAreMadeUniform) {
 }
 
 TEST(Excerpt, KeepsTheFramesWithinTheStretchAndDoesNotLoop) {
-  Clip c;
-  c.name = "ten";
-  c.skeleton = tiny_skeleton();
-  c.fps = 10;
-  c.loop = LoopMode::Wrap;
-  for (int i = 0; i < 11; ++i) c.frames.push_back(rest_pose(c.skeleton, Vec3(0.1 * i, 0, 1)));  // 1 s, x = t
+  const Clip c = one_second_clip();
   // 0.25 to 0.6 s: the frames at 0.3, 0.4, 0.5 and 0.6 s.
   const Clip e = excerpt(c, 0.25, 0.6);
   ASSERT_EQ(e.num_frames(), 4);
@@ -156,12 +162,7 @@ TEST(ClipStretch, ParsesFileFromAndToAndCountsNegativeTimesFromTheEnd) {
               std::string::npos)
         << bad;
 
-  Clip c;
-  c.name = "ten";
-  c.skeleton = tiny_skeleton();
-  c.fps = 10;
-  c.loop = LoopMode::Wrap;
-  for (int i = 0; i < 11; ++i) c.frames.push_back(rest_pose(c.skeleton, Vec3(0.1 * i, 0, 1)));  // 1 s, x = t
+  const Clip c = one_second_clip();
   EXPECT_EQ(cut(c, whole).num_frames(), 11);
   EXPECT_EQ(cut(c, whole).loop, LoopMode::Wrap);  // a whole clip is the clip itself
   // The last 0.3 s: 0.7 to 1.0 s, frames 7 to 10.
