@@ -16,8 +16,9 @@
 # for it (or use runs/zoo/humanoid_walk/model where the walk is not asked for). The walk from
 # standing is the walk fine-tuned to set off from where a get-up ends (the get-up clips' last
 # 0.3 s as start clips): the walk a recovery hands the character back to (docs/interactive.md).
-# Ctrl-C saves the running runs; the same command goes on from them. MIMIC names another mimic
-# binary (default build/src/mimic, built first).
+# Ctrl-C saves the running runs; the same command goes on from them. Started in the background
+# (nohup scripts/zoo.sh -j 2 ... &), where Ctrl-C's signal is ignored, `kill -TERM` its pid does the
+# same. MIMIC names another mimic binary (default build/src/mimic, built first).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${MIMIC_DATA:-../shared/data}
