@@ -489,6 +489,18 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_ok(export ${OUT}/imitate_run -o ${OUT}/imitate_exported)
   expect_in("${LAST_OUT}" "copied the run's clips, demos.csv into ${OUT}/imitate_exported")
   run_ok(eval ${OUT}/imitate_exported --episodes 1 --trials 1)
+  # Without --clip, a skill is measured against the one clip its starts come from.
+  expect_in("${LAST_OUT}" "imitation       1 trials from evenly spaced phases of 'jumping_jack_mirrored'")
+  # One policy from two clips: each clip measured (eval_<clip>.json); eval without --clip asks which.
+  run_ok(imitate ${OUT}/jj_mirror.mclip ${OUT}/demo/jumping_jack.mclip -o ${OUT}/imitate_two_clips --samples 1 --trials 1 --video-seconds 0
+         --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2)
+  foreach(f eval_jumping_jack.json eval_jumping_jack_mirrored.json)
+    if(NOT EXISTS ${OUT}/imitate_two_clips/${f})
+      message(FATAL_ERROR "mimic imitate of two clips wrote no ${f}")
+    endif()
+  endforeach()
+  run_ok(eval ${OUT}/imitate_two_clips/model --episodes 1 --trials 1)
+  expect_in("${LAST_OUT}" "imitation       not measured: the skill imitates 2 clips ('jumping_jack_mirrored', 'jumping_jack'); give one with --clip")
   run_fails("excludes" imitate --resume --method gail -o ${OUT}/imitate_run)
   run_fails("excludes" imitate --resume --start-clips ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run)
   # Steering (--task heading) from the model above: the goal mixed in, the input widened, the

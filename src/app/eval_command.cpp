@@ -284,11 +284,20 @@ void evaluate(const EvalArgs& args) {
     load.character = args.character;
     clip = std::make_unique<Clip>(load_motion(args.clip, load));
   }
-  if (character && (clip || character->reference())) {
+  // Without --clip: the environment's reference, or else the one clip the skill's starts come
+  // from (an adversarial skill draws its starts from its clip and tracks none).
+  std::shared_ptr<const Clip> own_clip;
+  std::vector<std::shared_ptr<const Clip>> own_clips;
+  if (character && !clip && !character->reference() && !contexts) {
+    own_clips = skill_clips(*skill);
+    if (own_clips.size() == 1) own_clip = own_clips.front();
+  }
+  const Clip* against = clip ? clip.get() : own_clip.get();
+  if (character && (against || character->reference())) {
     const int history = skill->history();
     const PolicyFunction act = policy_on_character(args, skill, *env);
-    const ImitationReport r = measure_imitation(*character, act, history, args.trials, clip.get(), args.goal_along_clip);
-    const std::string name = clip ? clip->name : character->reference()->name;
+    const ImitationReport r = measure_imitation(*character, act, history, args.trials, against, args.goal_along_clip);
+    const std::string name = against ? against->name : character->reference()->name;
     spdlog::info("  imitation       {} trials from evenly spaced phases of '{}', one cycle of {:.2f} s each (mean actions{}{})",
                  r.trial_errors.size(), name, r.cycle_seconds, contexts ? fmt::format(", context {} held", args.context) : "",
                  args.goal_along_clip ? ", commanded along the clip's path" : "");
@@ -316,6 +325,10 @@ void evaluate(const EvalArgs& args) {
                         links_json(r, r.link_errors), links_json(r, r.link_pose_errors), json_numbers(r.step_errors), json_numbers(r.step_pose_errors),
                         contexts ? fmt::format(", \"context\": {}", args.context) : "",
                         args.goal_along_clip ? ", \"goal_along_clip\": true" : "");
+  } else if (character && own_clips.size() > 1) {
+    std::string names;
+    for (const auto& c : own_clips) names += (names.empty() ? "'" : ", '") + c->name + "'";
+    spdlog::info("  imitation       not measured: the skill imitates {} clips ({}); give one with --clip", own_clips.size(), names);
   } else if (character) {
     spdlog::info("  imitation       not measured: the environment has no reference clip (give one with --clip)");
   }
