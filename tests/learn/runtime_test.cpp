@@ -40,11 +40,16 @@ double relative_gap(const Eigen::MatrixXd& ours, const Eigen::MatrixXd& referenc
   return worst;
 }
 
-// A model directory for the runtime from a trainer: its config and networks.mimic.
-std::filesystem::path runtime_copy(Trainer& trainer, const std::string& config_text, const std::string& name) {
+// A model directory for the runtime from a trainer: its config and networks.mimic, and the data
+// of its own that a config may name (an imitate run's clips/, start_clips/, character/).
+std::filesystem::path runtime_copy(Trainer& trainer, const std::string& config_text, const std::string& name,
+                                   const std::filesystem::path& model = {}) {
   const auto dir = test::temp_dir("runtime_" + name);
   write_file_atomic(dir / "config.yaml", config_text);
   trainer.write_runtime_networks(dir / kRuntimeFileName);
+  for (const char* own : {"clips", "start_clips", "character", "demos.csv"})
+    if (!model.empty() && std::filesystem::exists(model / own))
+      std::filesystem::copy(model / own, dir / own, std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
   return dir;
 }
 
@@ -74,7 +79,7 @@ TEST_P(CommittedModel, TorchFreeActionsMatchLibTorchsOnItsOwnEpisodes) {
     if (shared_data_dir().empty()) GTEST_SKIP() << GetParam() << " needs ../shared/data, not found: " << e.what();
     throw;
   }
-  const auto dir = runtime_copy(*trainer, read_text_file(model / "config.yaml"), GetParam());
+  const auto dir = runtime_copy(*trainer, read_text_file(model / "config.yaml"), GetParam(), model);
   const auto skill = Skill::load(dir);
   ASSERT_EQ(skill->input_size(), trainer->input_size());
   // 1,000 steps of the runtime's own episodes (restarted where one ends), every input kept.
