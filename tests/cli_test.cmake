@@ -25,6 +25,7 @@ expect_in("${LAST_OUT}" "learning    squat tracked after 4096 samples: imitation
 if(EXISTS ${SRC}/../shared/data/deepmimic/motions/humanoid3d_walk.txt AND NOT DEFINED ENV{MIMIC_DATA})
   string(REGEX MATCH "pretrained  humanoid_walk_iccgan: imitation error [^\n]*" walk_line "${LAST_OUT}")
   expect_in("${walk_line}" ", 0 of 1 down (0 fell)")
+  expect_in("${LAST_OUT}" "retarget    scale 1.047, ground shift")  # the CMU walk, by the built-in map
   foreach(skill humanoid_run_iccgan_straight_loop humanoid_kick_iccgan_total humanoid_punch_iccgan_annealed)
     expect_in("${LAST_OUT}" "pretrained  ${skill}: imitation error ")
   endforeach()
@@ -90,6 +91,30 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   expect_in("${LAST_OUT}" "world mean, by the rotations alone -> after inverse kinematics")
   expect_in("${LAST_OUT}" "contact right_ankle ")
   expect_in("${LAST_OUT}" "frames with a point below the floor: 0")
+  # The same capture with its joints named as Mixamo names them: the built-in map that fits is
+  # found without --map; read with the wrong forward axis, the target is turned to face it.
+  set(mixamo_head "${cmu_head}")
+  foreach(pair Hips:Hips LeftHip:LeftUpLeg RightHip:RightUpLeg LeftKnee:LeftLeg RightKnee:RightLeg LeftAnkle:LeftFoot
+               RightAnkle:RightFoot LeftShoulder:LeftArm RightShoulder:RightArm LeftElbow:LeftForeArm RightElbow:RightForeArm
+               LeftWrist:LeftHand RightWrist:RightHand Chest2:Spine2 Head:Head)
+    string(REPLACE ":" ";" pair "${pair}")
+    list(GET pair 0 from)
+    list(GET pair 1 to)
+    string(REGEX REPLACE "(ROOT|JOINT) ${from}([\r\n])" "\\1 mixamorig:${to}\\2" mixamo_head "${mixamo_head}")
+  endforeach()
+  set(MIXAMO ${OUT}/cmu/mixamo_named.bvh)
+  file(WRITE ${MIXAMO} "${mixamo_head}${cmu_motion}\n")
+  run_ok(motion retarget ${MIXAMO} --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/mixamo_walk.mclip)
+  expect_in("${LAST_OUT}" "mixamo_named.bvh: its joints are those of the built-in map mixamo_to_humanoid3d")
+  expect_in("${LAST_OUT}" "frames with a point below the floor: 0")
+  run_ok(motion retarget ${MIXAMO} --forward x --map mixamo_to_humanoid3d --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/mixamo_walk.mclip)
+  expect_in("${LAST_OUT}" "the source faced -90 degrees from the target at rest")
+  set(UNMAPPED ${OUT}/cmu/unmapped.bvh)
+  string(REPLACE "ROOT Hips" "ROOT Pelvis" unmapped_head "${cmu_head}")
+  file(WRITE ${UNMAPPED} "${unmapped_head}${cmu_motion}\n")
+  run_fails("unmapped.bvh: no built-in map fits its joints onto" motion retarget ${UNMAPPED} --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/x.mclip)
+  run_fails("no_such_map: no such map file, nor a built-in map (built in: cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d)"
+            motion retarget ${CMU} --map no_such_map --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/x.mclip)
   run_ok(motion info ${OUT}/cmu_walk.txt --character ${DATA}/deepmimic/characters/humanoid3d.txt)
   expect_in("${LAST_OUT}" "240 at 120.000 Hz")
   run_ok(character build ${DATA}/deepmimic/characters/humanoid3d.txt --ctrl ${DATA}/deepmimic/characters/humanoid3d_ctrl.txt -o ${OUT}/humanoid3d.xml)
@@ -567,11 +592,12 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
             --json ${OUT}/never.json)
   run_fails("use --method iccgan or gail, not tracking" imitate ${OUT}/jj_mirror.mclip --task heading --method tracking -o ${OUT}/imitate_steer2)
   run_fails("use --method iccgan or gail" imitate ${OUT}/jj_mirror.mclip --start-clips ${OUT}/jj_mirror.mclip --method tracking -o ${OUT}/imitate_steer2)
-  # A CMU clip retargeted by a map, tracked (seed 003's recipe).
-  run_ok(imitate ${CMU} --scale 0.056444 --map ${SRC}/data/retarget/cmu_to_humanoid3d.yaml --method tracking
+  # A CMU clip retargeted by the built-in map that fits it (no --map), tracked (seed 003's recipe).
+  run_ok(imitate ${CMU} --method tracking
          -o ${OUT}/imitate_cmu --samples 1 --trials 1 --video-seconds 0 --threads 1 --set collect.samples=128 --set collect.envs=2
          --set env.max_seconds=1)
-  expect_in("${LAST_OUT}" "retargeted ${CMU} by ${SRC}/data/retarget/cmu_to_humanoid3d.yaml:")
+  expect_in("${LAST_OUT}" "131_01.bvh: its joints are those of the built-in map cmu_to_humanoid3d")
+  expect_in("${LAST_OUT}" "retargeted ${CMU} by built-in map cmu_to_humanoid3d:")
   expect_in("${LAST_OUT}" "contact left_ankle ")
   file(READ ${OUT}/imitate_cmu/config.yaml imitate_cmu_config)
   expect_in("${imitate_cmu_config}" "clip: clips/131_01.mclip")
@@ -593,8 +619,9 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   if(NOT EXISTS ${OUT}/imitate_run/report.md)
     message(FATAL_ERROR "a refused mimic imitate removed the run it refused to overwrite")
   endif()
-  run_fails("does not fit the character" imitate ${DATA}/cmu-bvh/131_01.bvh -o ${OUT}/imitate_unfit)
-  run_fails("; give --map MAP.yaml to retarget it" imitate ${DATA}/cmu-bvh/131_01.bvh -o ${OUT}/imitate_unfit)
+  run_fails("does not fit the character" imitate ${UNMAPPED} -o ${OUT}/imitate_unfit)
+  run_fails("humanoid3d.txt (built in: cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d); give --map MAP.yaml"
+            imitate ${UNMAPPED} -o ${OUT}/imitate_unfit)
   run_fails("broken.bvh" imitate ${OUT}/broken.bvh -o ${OUT}/imitate_broken)
   run_fails("no run to resume" imitate --resume -o ${OUT}/imitate_nothing)
   foreach(d imitate_unfit imitate_broken imitate_nothing imitate_two imitate_steer2)

@@ -68,7 +68,7 @@ TEST(Retarget, OntoItsOwnSkeletonIsTheIdentity) {
   const Skeleton sk = load_deepmimic_character(ch).skeleton;
   const Clip walk = load_deepmimic_motion(walk_path, sk);
   RetargetMap map;
-  for (const Joint& j : sk.joints) map.joints.emplace_back(j.name, j.name);
+  for (const Joint& j : sk.joints) map.joints.emplace_back(j.name, std::vector<std::string>{j.name});
   map.scale = 1.0;
   map.ground_fix = false;
   map.end_effectors = {"right_wrist", "left_ankle"};

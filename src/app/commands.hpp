@@ -47,6 +47,9 @@ std::string json_numbers(const std::vector<double>& v);
 // What `motion retarget` and `imitate --map` print of a retargeting: scale, effector errors,
 // contacts' sliding, frames under the floor.
 std::string retarget_summary(const RetargetReport& report);
+// The one built-in retarget map that fits a clip onto a target skeleton (said in the log); an
+// Error naming the input says that none or several do.
+RetargetMap fitting_builtin_map(const Clip& clip, const std::filesystem::path& input, const Skeleton& target, const std::filesystem::path& target_file);
 
 // `mimic reconstruct --json` reports: whether a file is one, and their Markdown table (errors
 // against the truth of the raw estimate and the reconstruction) for `mimic table`.

@@ -13,6 +13,7 @@
 #include "motion/bvh.hpp"
 #include "motion/deepmimic.hpp"
 #include "motion/retarget.hpp"
+#include "motion/retarget_maps.hpp"
 #include "core/build_paths.hpp"
 #include "render/clip_video.hpp"
 #include "core/error.hpp"
@@ -149,15 +150,14 @@ void add_demo_command(CLI::App& app) {
     // 2. Real capture: CMU walk retargeted onto the DeepMimic humanoid, when ../shared is here.
     const auto data = shared_data_dir();
     const auto bvh = data / "cmu-bvh/131_01.bvh", ch = data / "deepmimic/characters/humanoid3d.txt";
-    const auto map = std::filesystem::path(kSourceDir) / "data/retarget/cmu_to_humanoid3d.yaml";
-    if (!data.empty() && std::filesystem::exists(bvh) && std::filesystem::exists(ch) && std::filesystem::exists(map)) {
+    if (!data.empty() && std::filesystem::exists(bvh) && std::filesystem::exists(ch)) {
       const CharacterModel humanoid = CharacterModel::from_deepmimic(ch, data / "deepmimic/characters/humanoid3d_ctrl.txt");
       // 2. DeepMimic's walk on the simulated humanoid.
       const Clip walk_clip = load_deepmimic_motion(data / "deepmimic/motions/humanoid3d_walk.txt", humanoid.skeleton);
       show(walk_clip, humanoid, *out, 4.0, *video, 120.0, summary);
       // 3. Real capture: CMU walk retargeted onto the same humanoid.
       RetargetReport report;
-      Clip clip = retarget(load_bvh(bvh, AxisConvention{"y", "z", 0.056444}), humanoid.skeleton, load_retarget_map(map), &report);
+      Clip clip = retarget(load_bvh(bvh, AxisConvention{"y", "z", 0.056444}), humanoid.skeleton, builtin_retarget_map("cmu_to_humanoid3d"), &report);
       clip.name = "cmu131_01_on_humanoid3d";
       show(clip, humanoid, *out, 0.0, *video, 120.0, summary);
       const std::string rep = "retarget    " + retarget_summary(report);

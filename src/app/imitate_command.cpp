@@ -33,6 +33,7 @@
 #include "motion/clip.hpp"
 #include "motion/resample.hpp"
 #include "motion/retarget.hpp"
+#include "motion/retarget_maps.hpp"
 #include "render/line_chart.hpp"
 
 namespace mimic::app {
@@ -93,28 +94,40 @@ std::string command_line(const ImitateArgs& a) {
   return line;
 }
 
-// The clips on the character, checked to fit it, retargeted first where a map is given. Nothing
-// is written here: bad input fails before the run directory exists.
+// The clips on the character, checked to fit it, retargeted first where a map is given (a file or
+// a built-in map's name). Without one, a clip that does not fit is retargeted by the one built-in
+// map that fits its skeleton onto the character's. Nothing is written here: bad input fails
+// before the run directory exists.
 std::vector<Clip> clips_on_character(const ImitateArgs& a, const std::vector<fs::path>& paths, const fs::path& character) {
   LoadOptions load = a.load;
   load.character = character;
-  const std::optional<RetargetMap> map = a.map.empty() ? std::nullopt : std::optional<RetargetMap>(load_retarget_map(a.map));
+  const std::optional<RetargetMap> given = a.map.empty() ? std::nullopt : std::optional<RetargetMap>(load_retarget_map_or_builtin(a.map.string()));
   const fs::path ctrl = character.parent_path() / (character.stem().string() + "_ctrl.txt");
-  const Skeleton target = map ? CharacterModel::from_deepmimic(character, fs::exists(ctrl) ? ctrl : fs::path{}).skeleton : Skeleton{};
+  std::optional<Skeleton> target;
+  const auto target_skeleton = [&]() -> const Skeleton& {
+    if (!target) target = CharacterModel::from_deepmimic(character, fs::exists(ctrl) ? ctrl : fs::path{}).skeleton;
+    return *target;
+  };
   std::vector<Clip> clips;
   for (const fs::path& path : paths) {
-    Clip clip = load_motion(path, map ? a.load : load);
+    Clip clip = load_motion(path, given ? a.load : load);
+    std::optional<RetargetMap> map = given;
+    if (!map) try {
+        (void)character_for(clip, path, load);
+      } catch (const Error& unfit) {
+        try {
+          map = fitting_builtin_map(clip, path, target_skeleton(), character);
+        } catch (const Error& none) {
+          throw Error(std::string(unfit.what()) + "; " + none.what());
+        }
+      }
     if (map) {
       RetargetReport report;
       const std::string name = clip.name;
-      clip = retarget(clip, target, *map, &report);
+      clip = retarget(clip, target_skeleton(), *map, &report);
       clip.name = name;
-      spdlog::info("retargeted {} by {}:\n{}", path.string(), a.map.string(), retarget_summary(report));
-    }
-    try {
+      spdlog::info("retargeted {} by {}:\n{}", path.string(), map->source, retarget_summary(report));
       (void)character_for(clip, path, load);
-    } catch (const Error& e) {
-      throw Error(std::string(e.what()) + (map ? "" : "; give --map MAP.yaml to retarget it (docs/retargeting.md)"));
     }
     for (const Clip& other : clips)
       if (other.name == clip.name) clip.name += fmt::format("_{}", clips.size() + 1);
@@ -467,8 +480,9 @@ void add_imitate_command(CLI::App& app) {
   CLI::Option* method = cmd->add_option("--method", args->method, "iccgan (seed 004's discriminator ensemble), gail (seed 000) or tracking (seed 003)")
       ->capture_default_str()
       ->check(CLI::IsMember({"iccgan", "gail", "tracking"}));
-  cmd->add_option("--map", args->map, "retarget map (YAML, docs/retargeting.md) for clips whose skeleton is not the character's")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("--map", args->map,
+                  "retarget map for clips whose skeleton is not the character's: a YAML file (docs/retargeting.md) or a built-in map's "
+                  "name; without it, the one built-in map that fits such a clip");
   cmd->add_option("--from", args->from, "start from a trained skill's weights (a model or run directory), e.g. a shipped walk")
       ->check(CLI::ExistingPath);
   cmd->add_option("--task", args->task, "none, or heading: steering, a target direction the skill walks towards (seed 004 eq. 8)")

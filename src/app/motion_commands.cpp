@@ -15,6 +15,7 @@
 #include "motion/mirror.hpp"
 #include "motion/resample.hpp"
 #include "motion/retarget.hpp"
+#include "motion/retarget_maps.hpp"
 #include "render/clip_svg.hpp"
 
 namespace mimic::app {
@@ -66,6 +67,18 @@ std::string clip_summary(const Clip& clip) {
       rad_to_deg(heading_angle(clip.frames.back().rot[0]) - heading_angle(clip.frames.front().rot[0])), fastest.empty() ? "-" : fastest);
 }
 
+RetargetMap fitting_builtin_map(const Clip& clip, const std::filesystem::path& input, const Skeleton& target, const std::filesystem::path& target_file) {
+  const std::vector<std::string> fitting = builtin_maps_fitting(clip.skeleton, target);
+  std::string names;
+  for (const std::string& n : builtin_retarget_map_names()) names += (names.empty() ? "" : ", ") + n;
+  if (fitting.empty())
+    throw Error(input.string() + ": no built-in map fits its joints onto " + target_file.string() + " (built in: " + names +
+                "); give --map MAP.yaml (docs/retargeting.md)");
+  if (fitting.size() > 1) throw Error(input.string() + ": several built-in maps fit (" + fitting[0] + ", " + fitting[1] + "...); choose one with --map");
+  spdlog::info("{}: its joints are those of the built-in map {}", input.string(), fitting.front());
+  return builtin_retarget_map(fitting.front());
+}
+
 std::string retarget_summary(const RetargetReport& report) {
   std::string text = fmt::format("scale {:.3f}, ground shift {:+.3f} m\nend effectors against the scaled source (m): root-relative mean, max; "
                                  "world mean, by the rotations alone -> after inverse kinematics\n",
@@ -76,6 +89,9 @@ std::string retarget_summary(const RetargetReport& report) {
     text += fmt::format("contact {:<16} {} stance frames of the source, sliding {:.3f} -> {:.3f} m/s\n", c.name, c.stance_frames,
                         c.sliding_before_ik, c.sliding);
   text += fmt::format("frames with a point below the floor: {}\n", report.frames_below_floor);
+  if (report.source_turn != 0)
+    text += fmt::format("the source faced {:+d} degrees from the target at rest (its forward axis is not the one given): the target was turned so\n",
+                        report.source_turn);
   return text;
 }
 
@@ -144,14 +160,18 @@ void add_motion_commands(CLI::App& app) {
 
   CLI::App* ret = motion->add_subcommand("retarget", "put a clip on another character by a joint-name map");
   ret->add_option("clip", args->input, "source motion file")->required()->check(CLI::ExistingFile);
-  ret->add_option("--map", args->map, "retarget map (YAML, see docs/retargeting.md)")->required()->check(CLI::ExistingFile);
+  ret->add_option("--map", args->map,
+                  "retarget map: a YAML file (docs/retargeting.md) or a built-in map's name; default: the one built-in map that fits "
+                  "the clip and the target");
   ret->add_option("--target", args->target, "target character: DeepMimic character file or a .mclip")->required()->check(CLI::ExistingFile);
   ret->add_option("-o,--output", args->output, "output file")->required();
   add_load_options(*ret, args->load);
   ret->callback([args] {
     RetargetReport report;
-    const Clip out = retarget(load_motion(args->input, args->load), load_target_skeleton(args->target),
-                              load_retarget_map(args->map), &report);
+    const Clip clip = load_motion(args->input, args->load);
+    const Skeleton target = load_target_skeleton(args->target);
+    const RetargetMap map = args->map.empty() ? fitting_builtin_map(clip, args->input, target, args->target) : load_retarget_map_or_builtin(args->map.string());
+    const Clip out = retarget(clip, target, map, &report);
     write_motion(out, args->output);
     fmt::print("{}", retarget_summary(report));
     spdlog::info("wrote {}", args->output.string());

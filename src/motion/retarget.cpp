@@ -37,8 +37,14 @@ RetargetMap parse_map(std::string_view text, const std::string& source) {
   if (!has(joints) || !joints.IsMap() || joints.size() == 0) fail(has(joints) ? joints : root, "'joints' must map target joint names to source joint names");
   for (const auto& kv : joints) {
     if (!kv.first.IsScalar()) fail(kv.first, "joints: a target joint must be a name");
-    if (!kv.second.IsScalar()) fail(kv.second, "joints: the source of '" + kv.first.Scalar() + "' must be a joint name");
-    map.joints.emplace_back(kv.first.Scalar(), kv.second.Scalar());
+    std::vector<std::string> sources;
+    if (kv.second.IsScalar()) sources.push_back(kv.second.Scalar());
+    if (kv.second.IsSequence())
+      for (const YAML::Node& n : kv.second)
+        if (n.IsScalar()) sources.push_back(n.Scalar());
+    if (sources.empty() || (kv.second.IsSequence() && sources.size() != kv.second.size()))
+      fail(kv.second, "joints: the source of '" + kv.first.Scalar() + "' must be a joint name or a list of them (the first the clip has)");
+    map.joints.emplace_back(kv.first.Scalar(), std::move(sources));
   }
   if (const YAML::Node s = root["scale"]; s.IsDefined()) {
     if (s.IsScalar() && s.Scalar() == "auto") {
@@ -97,7 +103,62 @@ RetargetMap load_retarget_map(const std::filesystem::path& path) {
   return parse_retarget_map(read_text_file(path), path.string());
 }
 
+int find_source_joint(const Skeleton& source, const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    if (const int i = source.find(name); i >= 0) return i;
+    int found = -1, count = 0;
+    for (int j = 0; j < source.num_joints(); ++j) {
+      const std::string& full = source.joints[static_cast<std::size_t>(j)].name;
+      const std::size_t colon = full.rfind(':');
+      if (colon != std::string::npos && std::string_view(full).substr(colon + 1) == name) found = j, ++count;
+    }
+    if (count == 1) return found;
+  }
+  return -1;
+}
+
+bool map_fits(const RetargetMap& map, const Skeleton& source, const Skeleton& target) {
+  for (const auto& [t, s] : map.joints)
+    if (target.find(t) < 0 || find_source_joint(source, s) < 0) return false;
+  for (const RetargetSite& site : map.sites)
+    if (target.find(site.joint) < 0) return false;
+  return true;
+}
+
 namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "'" : " or '") + n + "'";
+  return out;
+}
+
+// The turn about the vertical, in quarter turns (0-3), that best takes the target's rest pose onto
+// the source's: the mapped joints' horizontal offsets from the root, matched in 2-D (Kabsch), the
+// angle rounded to the nearest quarter turn. A source imported with the right axes gives 0.
+int rest_quarter_turns(const Skeleton& src, const LinkFrames& src_rest, const Skeleton& tgt, const LinkFrames& tgt_rest,
+                       const std::vector<int>& source_of) {
+  double dot = 0.0, cross = 0.0;
+  const Vec3 t0 = tgt_rest.joint_pos[0], s0 = src_rest.joint_pos[static_cast<std::size_t>(source_of[0])];
+  for (int t = 1; t < tgt.num_joints(); ++t) {
+    const int s = source_of[static_cast<std::size_t>(t)];
+    if (s < 0 || s >= src.num_joints()) continue;
+    const Vec3 a = tgt_rest.joint_pos[static_cast<std::size_t>(t)] - t0, b = src_rest.joint_pos[static_cast<std::size_t>(s)] - s0;
+    dot += a.x() * b.x() + a.y() * b.y();
+    cross += a.x() * b.y() - a.y() * b.x();
+  }
+  if (std::abs(dot) + std::abs(cross) < 1e-12) return 0;
+  const double quarters = std::round(std::atan2(cross, dot) / (M_PI / 2));
+  return (static_cast<int>(quarters) % 4 + 4) % 4;
+}
+
+// The target's rest frames turned about the vertical by quarter turns: where a source faces
+// another way at rest, its rotations relative to its rest are carried onto the target turned so.
+void turn_about_vertical(LinkFrames& rest, int quarter_turns) {
+  const Quat q(Eigen::AngleAxisd(quarter_turns * M_PI / 2, Vec3::UnitZ()));
+  for (Vec3& p : rest.joint_pos) p = q * p;
+  for (Quat& r : rest.joint_rot) r = q * r;
+}
 
 // Direction of the "bone" that leaves joint j in the rest pose: towards the mapped child (or the
 // first child / first site) of the target; zero if there is none.
@@ -126,13 +187,18 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
   const int nt = target.num_joints();
   std::vector<int> source_of(static_cast<std::size_t>(nt), -1);
   for (const auto& [t, s] : map.joints) {
-    source_of[static_cast<std::size_t>(need(target, t, "target"))] = need(src.skeleton, s, "source");
+    const int sj = find_source_joint(src.skeleton, s);
+    if (sj < 0) throw Error(map.source + ": source joint " + joined(s) + " does not exist in the source skeleton");
+    source_of[static_cast<std::size_t>(need(target, t, "target"))] = sj;
   }
   if (source_of[0] < 0) throw Error(map.source + ": the target root '" + target.joints[0].name + "' must be mapped");
 
-  // Rest poses and the bone-by-bone alignment of the target's rest onto the source's.
+  // Rest poses, the target's turned to face where the source's faces, and the bone-by-bone
+  // alignment of the target's rest onto the source's.
   const LinkFrames src_rest = forward_kinematics(src.skeleton, rest_pose(src.skeleton));
-  const LinkFrames tgt_rest = forward_kinematics(target, rest_pose(target));
+  LinkFrames tgt_rest = forward_kinematics(target, rest_pose(target));
+  const int turns = rest_quarter_turns(src.skeleton, src_rest, target, tgt_rest, source_of);
+  if (turns != 0) turn_about_vertical(tgt_rest, turns);
   std::vector<int> mapped_child(static_cast<std::size_t>(nt), -1);
   for (int c = nt - 1; c > 0; --c)
     if (source_of[static_cast<std::size_t>(c)] >= 0) mapped_child[static_cast<std::size_t>(target.joints[static_cast<std::size_t>(c)].parent)] = c;
@@ -249,6 +315,7 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
   if (report) {
     report->scale = scale;
     report->ground_shift = shift;
+    report->source_turn = turns == 3 ? -90 : 90 * turns;
     report->effectors.clear();
     const Vec3 up(0, 0, shift);
     const std::vector<Vec3> root = target_track(out.frames, 0);

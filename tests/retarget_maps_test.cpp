@@ -1,0 +1,134 @@
+// The built-in retarget maps, how a map finds its source joints (alternatives, a name prefix),
+// which map fits a clip, and a source that faces another way at rest.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "core/error.hpp"
+#include "core/math.hpp"
+#include "motion/bvh.hpp"
+#include "motion/deepmimic.hpp"
+#include "motion/retarget_maps.hpp"
+#include "test_data.hpp"
+
+using namespace mimic;
+
+namespace {
+
+// CMU's joint names (the shared 131_01.bvh) as Mixamo names them, with its "mixamorig:" prefix.
+Clip renamed_as_mixamo(Clip clip, bool with_spine2 = true) {
+  const std::map<std::string, std::string> names = {
+      {"Hips", "Hips"},          {"LeftHip", "LeftUpLeg"},        {"RightHip", "RightUpLeg"},     {"LeftKnee", "LeftLeg"},
+      {"RightKnee", "RightLeg"}, {"LeftAnkle", "LeftFoot"},       {"RightAnkle", "RightFoot"},    {"LeftShoulder", "LeftArm"},
+      {"RightShoulder", "RightArm"}, {"LeftElbow", "LeftForeArm"}, {"RightElbow", "RightForeArm"}, {"LeftWrist", "LeftHand"},
+      {"RightWrist", "RightHand"}, {"Chest2", "Spine2"},           {"Head", "Head"}};
+  for (Joint& j : clip.skeleton.joints) {
+    if (const auto it = names.find(j.name); it != names.end()) j.name = "mixamorig:" + it->second;
+    if (!with_spine2 && j.name == "mixamorig:Spine2") j.name = "mixamorig:Spine1";
+  }
+  return clip;
+}
+
+Skeleton skeleton_of(const std::vector<std::string>& names) {
+  Skeleton sk;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    Joint j;
+    j.name = names[i];
+    j.parent = i == 0 ? -1 : 0;
+    j.type = i == 0 ? JointType::Free : JointType::Spherical;
+    sk.joints.push_back(j);
+  }
+  return sk;
+}
+
+}  // namespace
+
+TEST(RetargetMaps, TheBuiltInMapsAreDataRetargetsFilesByName) {
+  EXPECT_EQ(builtin_retarget_map_names(), (std::vector<std::string>{"cmu_to_humanoid3d", "humanoid3d_to_scaled", "mixamo_to_humanoid3d"}));
+  const RetargetMap mixamo = builtin_retarget_map("mixamo_to_humanoid3d");
+  EXPECT_EQ(mixamo.source, "built-in map mixamo_to_humanoid3d");
+  ASSERT_EQ(mixamo.joints.size(), 15u);
+  EXPECT_EQ(mixamo.joints[1].first, "chest");
+  EXPECT_EQ(mixamo.joints[1].second, (std::vector<std::string>{"Spine2", "Spine1"}));
+  EXPECT_EQ(mixamo.ik.size(), 4u);
+  // The same map by its file and by its name.
+  const RetargetMap file = load_retarget_map_or_builtin(std::string(MIMIC_SOURCE_DIR) + "/data/retarget/cmu_to_humanoid3d.yaml");
+  const RetargetMap named = load_retarget_map_or_builtin("cmu_to_humanoid3d");
+  EXPECT_EQ(file.joints, named.joints);
+  EXPECT_EQ(file.contacts, named.contacts);
+  try {
+    load_retarget_map_or_builtin("mixamo");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "mixamo: no such map file, nor a built-in map (built in: cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d)");
+  }
+}
+
+TEST(RetargetMaps, ASourceJointIsTheFirstOfItsNamesAnsweringByNameOrAfterAPrefix) {
+  const Skeleton sk = skeleton_of({"mixamorig:Hips", "Spine1", "a:Hand", "b:Hand", "Spine:Chest"});
+  EXPECT_EQ(find_source_joint(sk, {"Hips"}), 0);            // after the prefix
+  EXPECT_EQ(find_source_joint(sk, {"mixamorig:Hips"}), 0);  // the whole name
+  EXPECT_EQ(find_source_joint(sk, {"Spine2", "Spine1"}), 1);  // the first the skeleton has
+  EXPECT_EQ(find_source_joint(sk, {"Hand"}), -1);           // two joints answer: neither
+  EXPECT_EQ(find_source_joint(sk, {"Spine"}), -1);          // a prefix is not a name
+  EXPECT_EQ(find_source_joint(sk, {"Chest"}), 4);
+  // In a map: a list of names; anything else in it is an error at its line.
+  EXPECT_EQ(parse_retarget_map("joints:\n  root: [Pelvis, Hips]\n", "m.yaml").joints[0].second, (std::vector<std::string>{"Pelvis", "Hips"}));
+  try {
+    parse_retarget_map("joints:\n  root: Hips\n  chest: [Spine2, {a: b}]\n", "m.yaml");
+    FAIL();
+  } catch (const ParseError& e) {
+    EXPECT_STREQ(e.what(), "m.yaml:3: joints: the source of 'chest' must be a joint name or a list of them (the first the clip has)");
+  }
+}
+
+TEST(RetargetMaps, AMixamoNamedClipIsFoundByItsMapAndRetargetsAsTheCmuMapRetargetsTheCmuClip) {
+  std::filesystem::path bvh, ch;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
+  const Clip cmu = load_bvh(bvh, AxisConvention{"y", "z", 0.056444});
+  const Skeleton humanoid = load_deepmimic_character(ch).skeleton;
+  const Clip mixamo = renamed_as_mixamo(cmu), spine1 = renamed_as_mixamo(cmu, false);
+  EXPECT_EQ(builtin_maps_fitting(cmu.skeleton, humanoid), std::vector<std::string>{"cmu_to_humanoid3d"});
+  EXPECT_EQ(builtin_maps_fitting(mixamo.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
+  EXPECT_EQ(builtin_maps_fitting(spine1.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
+  EXPECT_TRUE(builtin_maps_fitting(skeleton_of({"Pelvis", "Spine"}), humanoid).empty());
+  // The two maps pair the same joints (the chest with CMU's Chest2, Mixamo's Spine2): the same clip.
+  RetargetReport by_cmu, by_mixamo;
+  const Clip a = retarget(cmu, humanoid, builtin_retarget_map("cmu_to_humanoid3d"), &by_cmu);
+  const Clip b = retarget(mixamo, humanoid, builtin_retarget_map("mixamo_to_humanoid3d"), &by_mixamo);
+  ASSERT_EQ(a.num_frames(), b.num_frames());
+  for (std::size_t f = 0; f < a.frames.size(); ++f) {
+    EXPECT_EQ(a.frames[f].root_pos, b.frames[f].root_pos);
+    for (std::size_t j = 0; j < a.frames[f].rot.size(); ++j) EXPECT_EQ(a.frames[f].rot[j].coeffs(), b.frames[f].rot[j].coeffs());
+  }
+  EXPECT_EQ(by_mixamo.source_turn, 0);
+  // Without Spine2 the chest takes Spine1 (CMU's Chest2 renamed so): the same clip again.
+  const Clip c = retarget(spine1, humanoid, builtin_retarget_map("mixamo_to_humanoid3d"));
+  EXPECT_EQ(c.frames[100].rot[1].coeffs(), a.frames[100].rot[1].coeffs());
+}
+
+TEST(RetargetMaps, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFaces) {
+  std::filesystem::path bvh, ch;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
+  const Skeleton humanoid = load_deepmimic_character(ch).skeleton;
+  const RetargetMap map = builtin_retarget_map("cmu_to_humanoid3d");
+  RetargetReport right, wrong;
+  const Clip a = retarget(load_bvh(bvh, AxisConvention{"y", "z", 0.056444}), humanoid, map, &right);
+  // Read with forward x, the capture's forward (+z) lands on mimic's -y: a quarter turn clockwise
+  // seen from above, its whole motion turned so.
+  const Clip b = retarget(load_bvh(bvh, AxisConvention{"y", "x", 0.056444}), humanoid, map, &wrong);
+  EXPECT_EQ(right.source_turn, 0);
+  EXPECT_EQ(wrong.source_turn, -90);
+  const Quat quarter(Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitZ()));
+  for (std::size_t f = 0; f < a.frames.size(); f += 50) {
+    EXPECT_LT((quarter * a.frames[f].root_pos - b.frames[f].root_pos).norm(), 1e-6) << f;
+    EXPECT_LT(rotation_distance(quarter * a.frames[f].rot[0], b.frames[f].rot[0]), 1e-6) << f;
+    for (std::size_t j = 1; j < a.frames[f].rot.size(); ++j) EXPECT_LT(rotation_distance(a.frames[f].rot[j], b.frames[f].rot[j]), 1e-6) << f << " " << j;
+  }
+  // Left as it was, the character would have walked sideways: facing +x, going along -y.
+  const Vec3 travel = b.frames.back().root_pos - b.frames.front().root_pos;
+  const Vec3 facing = b.frames.front().rot[0] * Vec3::UnitX();
+  EXPECT_GT(travel.normalized().dot(facing.normalized()), 0.9);
+}
