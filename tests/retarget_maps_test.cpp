@@ -132,3 +132,23 @@ TEST(RetargetMaps, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFac
   const Vec3 facing = b.frames.front().rot[0] * Vec3::UnitX();
   EXPECT_GT(travel.normalized().dot(facing.normalized()), 0.9);
 }
+
+TEST(RetargetMaps, ASourceReadWithTheWrongUpAxisIsAnErrorThatSaysSo) {
+  std::filesystem::path bvh, ch;
+  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
+  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
+  const Skeleton humanoid = load_deepmimic_character(ch).skeleton;
+  const RetargetMap map = builtin_retarget_map("cmu_to_humanoid3d");
+  // Lying (its depth axis taken for up) and upside down: before, a scale of 139 or a body on its head.
+  for (const AxisConvention& axes : {AxisConvention{"z", "y", 0.01}, AxisConvention{"x", "z", 0.01}, AxisConvention{"-y", "z", 0.01}}) {
+    try {
+      retarget(load_bvh(bvh, axes), humanoid, map);
+      FAIL() << axes.up;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("built-in map cmu_to_humanoid3d: the source does not stand up at rest along the up axis it was read with"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("read it with the right --up"), std::string::npos);
+    }
+  }
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/error.hpp"
@@ -127,6 +128,11 @@ bool map_fits(const RetargetMap& map, const Skeleton& source, const Skeleton& ta
 
 namespace {
 
+// Below this (rest_uprightness), the source was read with the wrong up axis. Measured on the CMU
+// walk onto humanoid3d: 0.92 read right, 0.04 or less lying (up x, z or -z), -0.92 upside down;
+// the walk onto humanoid3d made longer-legged: 0.99.
+constexpr double kMinUprightness = 0.5;
+
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += (out.empty() ? "'" : " or '") + n + "'";
@@ -150,6 +156,23 @@ int rest_quarter_turns(const Skeleton& src, const LinkFrames& src_rest, const Sk
   if (std::abs(dot) + std::abs(cross) < 1e-12) return 0;
   const double quarters = std::round(std::atan2(cross, dot) / (M_PI / 2));
   return (static_cast<int>(quarters) % 4 + 4) % 4;
+}
+
+// How far the source stands up at rest as the target does, over the mapped joints' offsets from
+// the root: the sum of the products of source and target heights over the product of the
+// offsets' whole lengths, relative to the same for the target with itself (1 for a source alike
+// the target, 0 where it lies, -1 on its head; a four-legged target's own horizontal spine does
+// not lower it). 1 where nothing but the root is mapped.
+double rest_uprightness(const LinkFrames& src_rest, const LinkFrames& tgt_rest, const std::vector<int>& source_of) {
+  double heights = 0, target_heights = 0, target_sq = 0, source_sq = 0;
+  for (std::size_t t = 1; t < source_of.size(); ++t) {
+    if (source_of[t] < 0) continue;
+    const Vec3 a = tgt_rest.joint_pos[t] - tgt_rest.joint_pos[0];
+    const Vec3 b = src_rest.joint_pos[static_cast<std::size_t>(source_of[t])] - src_rest.joint_pos[static_cast<std::size_t>(source_of[0])];
+    heights += a.z() * b.z(), target_heights += a.z() * a.z(), target_sq += a.squaredNorm(), source_sq += b.squaredNorm();
+  }
+  if (target_heights < 1e-12 || source_sq < 1e-12) return 1.0;
+  return heights / std::sqrt(target_sq * source_sq) / (target_heights / target_sq);
 }
 
 // The target's rest frames turned about the vertical by quarter turns: where a source faces
@@ -197,6 +220,12 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
   // alignment of the target's rest onto the source's.
   const LinkFrames src_rest = forward_kinematics(src.skeleton, rest_pose(src.skeleton));
   LinkFrames tgt_rest = forward_kinematics(target, rest_pose(target));
+  if (const double upright = rest_uprightness(src_rest, tgt_rest, source_of); upright < kMinUprightness) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.2f", upright);
+    throw Error(map.source + ": the source does not stand up at rest along the up axis it was read with (its mapped joints' heights " +
+                "agree with the target's by " + value + ", where 1 is alike and 0 lying); read it with the right --up (y for most BVH files)");
+  }
   const int turns = rest_quarter_turns(src.skeleton, src_rest, target, tgt_rest, source_of);
   if (turns != 0) turn_about_vertical(tgt_rest, turns);
   std::vector<int> mapped_child(static_cast<std::size_t>(nt), -1);
