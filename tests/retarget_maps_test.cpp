@@ -41,6 +41,20 @@ Skeleton skeleton_of(const std::vector<std::string>& names) {
   return sk;
 }
 
+// The shared CMU walk and DeepMimic's humanoid (the tests skip without ../shared).
+class RetargetCmu : public testing::Test {
+ protected:
+  void SetUp() override {
+    std::filesystem::path ch;
+    MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
+    MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
+    humanoid = load_deepmimic_character(ch).skeleton;
+  }
+  Clip cmu(const AxisConvention& axes = AxisConvention{"y", "z", 0.056444}) const { return load_bvh(bvh, axes); }
+  std::filesystem::path bvh;
+  Skeleton humanoid;
+};
+
 }  // namespace
 
 TEST(RetargetMaps, TheBuiltInMapsAreDataRetargetsFilesByName) {
@@ -82,20 +96,16 @@ TEST(RetargetMaps, ASourceJointIsTheFirstOfItsNamesAnsweringByNameOrAfterAPrefix
   }
 }
 
-TEST(RetargetMaps, AMixamoNamedClipIsFoundByItsMapAndRetargetsAsTheCmuMapRetargetsTheCmuClip) {
-  std::filesystem::path bvh, ch;
-  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
-  const Clip cmu = load_bvh(bvh, AxisConvention{"y", "z", 0.056444});
-  const Skeleton humanoid = load_deepmimic_character(ch).skeleton;
-  const Clip mixamo = renamed_as_mixamo(cmu), spine1 = renamed_as_mixamo(cmu, false);
-  EXPECT_EQ(builtin_maps_fitting(cmu.skeleton, humanoid), std::vector<std::string>{"cmu_to_humanoid3d"});
+TEST_F(RetargetCmu, AMixamoNamedClipIsFoundByItsMapAndRetargetsAsTheCmuMapRetargetsTheCmuClip) {
+  const Clip capture = cmu();
+  const Clip mixamo = renamed_as_mixamo(capture), spine1 = renamed_as_mixamo(capture, false);
+  EXPECT_EQ(builtin_maps_fitting(capture.skeleton, humanoid), std::vector<std::string>{"cmu_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(mixamo.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(spine1.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
   EXPECT_TRUE(builtin_maps_fitting(skeleton_of({"Pelvis", "Spine"}), humanoid).empty());
   // The two maps pair the same joints (the chest with CMU's Chest2, Mixamo's Spine2): the same clip.
   RetargetReport by_cmu, by_mixamo;
-  const Clip a = retarget(cmu, humanoid, builtin_retarget_map("cmu_to_humanoid3d"), &by_cmu);
+  const Clip a = retarget(capture, humanoid, builtin_retarget_map("cmu_to_humanoid3d"), &by_cmu);
   const Clip b = retarget(mixamo, humanoid, builtin_retarget_map("mixamo_to_humanoid3d"), &by_mixamo);
   ASSERT_EQ(a.num_frames(), b.num_frames());
   for (std::size_t f = 0; f < a.frames.size(); ++f) {
@@ -108,17 +118,13 @@ TEST(RetargetMaps, AMixamoNamedClipIsFoundByItsMapAndRetargetsAsTheCmuMapRetarge
   EXPECT_EQ(c.frames[100].rot[1].coeffs(), a.frames[100].rot[1].coeffs());
 }
 
-TEST(RetargetMaps, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFaces) {
-  std::filesystem::path bvh, ch;
-  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
-  const Skeleton humanoid = load_deepmimic_character(ch).skeleton;
+TEST_F(RetargetCmu, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFaces) {
   const RetargetMap map = builtin_retarget_map("cmu_to_humanoid3d");
   RetargetReport right, wrong;
-  const Clip a = retarget(load_bvh(bvh, AxisConvention{"y", "z", 0.056444}), humanoid, map, &right);
+  const Clip a = retarget(cmu(), humanoid, map, &right);
   // Read with forward x, the capture's forward (+z) lands on mimic's -y: a quarter turn clockwise
   // seen from above, its whole motion turned so.
-  const Clip b = retarget(load_bvh(bvh, AxisConvention{"y", "x", 0.056444}), humanoid, map, &wrong);
+  const Clip b = retarget(cmu(AxisConvention{"y", "x", 0.056444}), humanoid, map, &wrong);
   EXPECT_EQ(right.source_turn, 0);
   EXPECT_EQ(wrong.source_turn, -90);
   const Quat quarter(Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitZ()));
@@ -133,16 +139,12 @@ TEST(RetargetMaps, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFac
   EXPECT_GT(travel.normalized().dot(facing.normalized()), 0.9);
 }
 
-TEST(RetargetMaps, ASourceReadWithTheWrongUpAxisIsAnErrorThatSaysSo) {
-  std::filesystem::path bvh, ch;
-  MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", bvh);
-  MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
-  const Skeleton humanoid = load_deepmimic_character(ch).skeleton;
+TEST_F(RetargetCmu, ASourceReadWithTheWrongUpAxisIsAnErrorThatSaysSo) {
   const RetargetMap map = builtin_retarget_map("cmu_to_humanoid3d");
   // Lying (its depth axis taken for up) and upside down: before, a scale of 139 or a body on its head.
   for (const AxisConvention& axes : {AxisConvention{"z", "y", 0.01}, AxisConvention{"x", "z", 0.01}, AxisConvention{"-y", "z", 0.01}}) {
     try {
-      retarget(load_bvh(bvh, axes), humanoid, map);
+      retarget(cmu(axes), humanoid, map);
       FAIL() << axes.up;
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("built-in map cmu_to_humanoid3d: the source does not stand up at rest along the up axis it was read with"),
