@@ -113,7 +113,7 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   string(REPLACE "ROOT Hips" "ROOT Pelvis" unmapped_head "${cmu_head}")
   file(WRITE ${UNMAPPED} "${unmapped_head}${cmu_motion}\n")
   run_fails("unmapped.bvh: no built-in map fits its joints onto" motion retarget ${UNMAPPED} --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/x.mclip)
-  run_fails("no_such_map: no such map file, nor a built-in map (built in: cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d)"
+  run_fails("no_such_map: no such map file, nor a built-in map (built in: cmu_asf_to_humanoid3d, cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d, smpl_to_humanoid3d)"
             motion retarget ${CMU} --map no_such_map --target ${DATA}/deepmimic/characters/humanoid3d.txt -o ${OUT}/x.mclip)
   run_ok(motion info ${OUT}/cmu_walk.txt --character ${DATA}/deepmimic/characters/humanoid3d.txt)
   expect_in("${LAST_OUT}" "240 at 120.000 Hz")
@@ -620,7 +620,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
     message(FATAL_ERROR "a refused mimic imitate removed the run it refused to overwrite")
   endif()
   run_fails("does not fit the character" imitate ${UNMAPPED} -o ${OUT}/imitate_unfit)
-  run_fails("humanoid3d.txt (built in: cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d); give --map MAP.yaml"
+  run_fails("humanoid3d.txt (built in: cmu_asf_to_humanoid3d, cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d, smpl_to_humanoid3d); give --map MAP.yaml"
             imitate ${UNMAPPED} -o ${OUT}/imitate_unfit)
   run_fails("broken.bvh" imitate ${OUT}/broken.bvh -o ${OUT}/imitate_broken)
   run_fails("no run to resume" imitate --resume -o ${OUT}/imitate_nothing)

@@ -15,18 +15,46 @@ using namespace mimic;
 
 namespace {
 
-// CMU's joint names (the shared 131_01.bvh) as Mixamo names them, with its "mixamorig:" prefix.
-Clip renamed_as_mixamo(Clip clip, bool with_spine2 = true) {
-  const std::map<std::string, std::string> names = {
-      {"Hips", "Hips"},          {"LeftHip", "LeftUpLeg"},        {"RightHip", "RightUpLeg"},     {"LeftKnee", "LeftLeg"},
-      {"RightKnee", "RightLeg"}, {"LeftAnkle", "LeftFoot"},       {"RightAnkle", "RightFoot"},    {"LeftShoulder", "LeftArm"},
-      {"RightShoulder", "RightArm"}, {"LeftElbow", "LeftForeArm"}, {"RightElbow", "RightForeArm"}, {"LeftWrist", "LeftHand"},
-      {"RightWrist", "RightHand"}, {"Chest2", "Spine2"},           {"Head", "Head"}};
-  for (Joint& j : clip.skeleton.joints) {
-    if (const auto it = names.find(j.name); it != names.end()) j.name = "mixamorig:" + it->second;
-    if (!with_spine2 && j.name == "mixamorig:Spine2") j.name = "mixamorig:Spine1";
+// The shared CMU walk's joints (131_01.bvh) given another convention's names: "L" for the left
+// side's (Left -> L), the right's made from them.
+Clip renamed(Clip clip, const std::string& prefix, const std::map<std::string, std::string>& left_and_middle) {
+  std::map<std::string, std::string> names;
+  for (const auto& [from, to] : left_and_middle) {
+    names[from] = to;
+    if (from.rfind("Left", 0) == 0) {
+      std::string right = to;
+      for (const auto& [l, r] : {std::pair{"Left", "Right"}, std::pair{"L_", "R_"}, std::pair{"left_", "right_"}})
+        if (const std::size_t at = right.find(l); at != std::string::npos) {
+          right.replace(at, std::string(l).size(), r);
+          break;
+        }
+      if (right == to && !to.empty() && to[0] == 'l') right[0] = 'r';  // Acclaim: lfemur -> rfemur
+      names["Right" + from.substr(4)] = right;
+    }
   }
+  for (Joint& j : clip.skeleton.joints)
+    if (const auto it = names.find(j.name); it != names.end()) j.name = prefix + it->second;
   return clip;
+}
+
+// Mixamo's names with its prefix; SMPL's two spellings; CMU's Acclaim bone names.
+Clip renamed_as_mixamo(const Clip& clip, const std::string& chest = "Spine2") {
+  return renamed(clip, "mixamorig:",
+                 {{"Hips", "Hips"}, {"LeftHip", "LeftUpLeg"}, {"LeftKnee", "LeftLeg"}, {"LeftAnkle", "LeftFoot"}, {"LeftShoulder", "LeftArm"},
+                  {"LeftElbow", "LeftForeArm"}, {"LeftWrist", "LeftHand"}, {"Chest2", chest}, {"Head", "Head"}});
+}
+Clip renamed_as_smpl(const Clip& clip, bool lower_case) {
+  const auto n = [&](const char* upper, const char* lower) { return std::string(lower_case ? lower : upper); };
+  return renamed(clip, "",
+                 {{"Hips", n("Pelvis", "pelvis")}, {"LeftHip", n("L_Hip", "left_hip")}, {"LeftKnee", n("L_Knee", "left_knee")},
+                  {"LeftAnkle", n("L_Ankle", "left_ankle")}, {"LeftShoulder", n("L_Shoulder", "left_shoulder")},
+                  {"LeftElbow", n("L_Elbow", "left_elbow")}, {"LeftWrist", n("L_Wrist", "left_wrist")}, {"Chest2", n("Spine3", "spine3")},
+                  {"Head", n("Head", "head")}});
+}
+Clip renamed_as_acclaim(const Clip& clip) {
+  return renamed(clip, "",
+                 {{"Hips", "root"}, {"LeftHip", "lfemur"}, {"LeftKnee", "ltibia"}, {"LeftAnkle", "lfoot"}, {"LeftShoulder", "lhumerus"},
+                  {"LeftElbow", "lradius"}, {"LeftWrist", "lwrist"}, {"Chest2", "thorax"}, {"Head", "head"}});
 }
 
 Skeleton skeleton_of(const std::vector<std::string>& names) {
@@ -58,7 +86,8 @@ class RetargetCmu : public testing::Test {
 }  // namespace
 
 TEST(RetargetMaps, TheBuiltInMapsAreDataRetargetsFilesByName) {
-  EXPECT_EQ(builtin_retarget_map_names(), (std::vector<std::string>{"cmu_to_humanoid3d", "humanoid3d_to_scaled", "mixamo_to_humanoid3d"}));
+  EXPECT_EQ(builtin_retarget_map_names(),
+            (std::vector<std::string>{"cmu_asf_to_humanoid3d", "cmu_to_humanoid3d", "humanoid3d_to_scaled", "mixamo_to_humanoid3d", "smpl_to_humanoid3d"}));
   const RetargetMap mixamo = builtin_retarget_map("mixamo_to_humanoid3d");
   EXPECT_EQ(mixamo.source, "built-in map mixamo_to_humanoid3d");
   ASSERT_EQ(mixamo.joints.size(), 15u);
@@ -74,7 +103,7 @@ TEST(RetargetMaps, TheBuiltInMapsAreDataRetargetsFilesByName) {
     load_retarget_map_or_builtin("mixamo");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "mixamo: no such map file, nor a built-in map (built in: cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d)");
+    EXPECT_STREQ(e.what(), "mixamo: no such map file, nor a built-in map (built in: cmu_asf_to_humanoid3d, cmu_to_humanoid3d, humanoid3d_to_scaled, mixamo_to_humanoid3d, smpl_to_humanoid3d)");
   }
 }
 
@@ -96,13 +125,19 @@ TEST(RetargetMaps, ASourceJointIsTheFirstOfItsNamesAnsweringByNameOrAfterAPrefix
   }
 }
 
-TEST_F(RetargetCmu, AMixamoNamedClipIsFoundByItsMapAndRetargetsAsTheCmuMapRetargetsTheCmuClip) {
+TEST_F(RetargetCmu, ClipsNamedAsMixamoSmplOrAcclaimAreFoundByTheirMapsAndRetargetAsTheCmuMapRetargetsTheCmuClip) {
   const Clip capture = cmu();
-  const Clip mixamo = renamed_as_mixamo(capture), spine1 = renamed_as_mixamo(capture, false);
+  const Clip mixamo = renamed_as_mixamo(capture), spine1 = renamed_as_mixamo(capture, "Spine1");
   EXPECT_EQ(builtin_maps_fitting(capture.skeleton, humanoid), std::vector<std::string>{"cmu_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(mixamo.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(spine1.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
   EXPECT_TRUE(builtin_maps_fitting(skeleton_of({"Pelvis", "Spine"}), humanoid).empty());
+  const Clip smpl = renamed_as_smpl(capture, false), smpl_lower = renamed_as_smpl(capture, true), acclaim = renamed_as_acclaim(capture);
+  EXPECT_EQ(builtin_maps_fitting(smpl.skeleton, humanoid), std::vector<std::string>{"smpl_to_humanoid3d"});
+  EXPECT_EQ(builtin_maps_fitting(smpl_lower.skeleton, humanoid), std::vector<std::string>{"smpl_to_humanoid3d"});
+  EXPECT_EQ(builtin_maps_fitting(acclaim.skeleton, humanoid), std::vector<std::string>{"cmu_asf_to_humanoid3d"});
+  EXPECT_EQ(mixamo.skeleton.joints[static_cast<std::size_t>(capture.skeleton.find("RightKnee"))].name, "mixamorig:RightLeg");
+  EXPECT_EQ(acclaim.skeleton.joints[static_cast<std::size_t>(capture.skeleton.find("RightKnee"))].name, "rtibia");
   // The two maps pair the same joints (the chest with CMU's Chest2, Mixamo's Spine2): the same clip.
   RetargetReport by_cmu, by_mixamo;
   const Clip a = retarget(capture, humanoid, builtin_retarget_map("cmu_to_humanoid3d"), &by_cmu);
@@ -113,9 +148,14 @@ TEST_F(RetargetCmu, AMixamoNamedClipIsFoundByItsMapAndRetargetsAsTheCmuMapRetarg
     for (std::size_t j = 0; j < a.frames[f].rot.size(); ++j) EXPECT_EQ(a.frames[f].rot[j].coeffs(), b.frames[f].rot[j].coeffs());
   }
   EXPECT_EQ(by_mixamo.source_turn, 0);
-  // Without Spine2 the chest takes Spine1 (CMU's Chest2 renamed so): the same clip again.
-  const Clip c = retarget(spine1, humanoid, builtin_retarget_map("mixamo_to_humanoid3d"));
-  EXPECT_EQ(c.frames[100].rot[1].coeffs(), a.frames[100].rot[1].coeffs());
+  // Without Spine2 the chest takes Spine1 (CMU's Chest2 renamed so), and SMPL's names by its
+  // map: the same clip again.
+  for (const auto& [clip, map] : {std::pair{spine1, "mixamo_to_humanoid3d"}, std::pair{smpl, "smpl_to_humanoid3d"},
+                                  std::pair{smpl_lower, "smpl_to_humanoid3d"}, std::pair{acclaim, "cmu_asf_to_humanoid3d"}}) {
+    const Clip c = retarget(clip, humanoid, builtin_retarget_map(map));
+    for (std::size_t j = 0; j < c.frames[100].rot.size(); ++j) EXPECT_EQ(c.frames[100].rot[j].coeffs(), a.frames[100].rot[j].coeffs()) << map;
+    EXPECT_EQ(c.frames[100].root_pos, a.frames[100].root_pos) << map;
+  }
 }
 
 TEST_F(RetargetCmu, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFaces) {
