@@ -482,7 +482,7 @@ void add_imitate_command(CLI::App& app) {
       ->check(CLI::IsMember({"iccgan", "gail", "tracking"}));
   cmd->add_option("--map", args->map,
                   "retarget map for clips whose skeleton is not the character's: a YAML file (docs/retargeting.md) or a built-in map's "
-                  "name; without it, the one built-in map that fits such a clip");
+                  "name (" + builtin_retarget_map_list() + "); without it, the one built-in map that fits such a clip");
   cmd->add_option("--from", args->from, "start from a trained skill's weights (a model or run directory), e.g. a shipped walk")
       ->check(CLI::ExistingPath);
   cmd->add_option("--task", args->task, "none, or heading: steering, a target direction the skill walks towards (seed 004 eq. 8)")

@@ -69,10 +69,8 @@ std::string clip_summary(const Clip& clip) {
 
 RetargetMap fitting_builtin_map(const Clip& clip, const std::filesystem::path& input, const Skeleton& target, const std::filesystem::path& target_file) {
   const std::vector<std::string> fitting = builtin_maps_fitting(clip.skeleton, target);
-  std::string names;
-  for (const std::string& n : builtin_retarget_map_names()) names += (names.empty() ? "" : ", ") + n;
   if (fitting.empty())
-    throw Error(input.string() + ": no built-in map fits its joints onto " + target_file.string() + " (built in: " + names +
+    throw Error(input.string() + ": no built-in map fits its joints onto " + target_file.string() + " (built in: " + builtin_retarget_map_list() +
                 "); give --map MAP.yaml (docs/retargeting.md)");
   if (fitting.size() > 1) throw Error(input.string() + ": several built-in maps fit (" + fitting[0] + ", " + fitting[1] + "...); choose one with --map");
   spdlog::info("{}: its joints are those of the built-in map {}", input.string(), fitting.front());
@@ -161,8 +159,8 @@ void add_motion_commands(CLI::App& app) {
   CLI::App* ret = motion->add_subcommand("retarget", "put a clip on another character by a joint-name map");
   ret->add_option("clip", args->input, "source motion file")->required()->check(CLI::ExistingFile);
   ret->add_option("--map", args->map,
-                  "retarget map: a YAML file (docs/retargeting.md) or a built-in map's name; default: the one built-in map that fits "
-                  "the clip and the target");
+                  "retarget map: a YAML file (docs/retargeting.md) or a built-in map's name (" + builtin_retarget_map_list() +
+                      "); default: the one built-in map that fits the clip and the target");
   ret->add_option("--target", args->target, "target character: DeepMimic character file or a .mclip")->required()->check(CLI::ExistingFile);
   ret->add_option("-o,--output", args->output, "output file")->required();
   add_load_options(*ret, args->load);

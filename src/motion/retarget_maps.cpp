@@ -12,25 +12,23 @@ std::vector<std::string> builtin_retarget_map_names() {
   return names;
 }
 
-namespace {
-std::string listed(const std::vector<std::string>& names) {
+std::string builtin_retarget_map_list() {
   std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  for (const std::string& n : builtin_retarget_map_names()) out += (out.empty() ? "" : ", ") + n;
   return out;
 }
-}  // namespace
 
 RetargetMap builtin_retarget_map(const std::string& name) {
   for (const BuiltinText& m : builtin_retarget_map_texts())
     if (name == m.name) return parse_retarget_map(m.text, "built-in map " + name);
-  throw Error("no built-in retarget map '" + name + "' (built in: " + listed(builtin_retarget_map_names()) + ")");
+  throw Error("no built-in retarget map '" + name + "' (built in: " + builtin_retarget_map_list() + ")");
 }
 
 RetargetMap load_retarget_map_or_builtin(const std::string& file_or_name) {
   if (std::filesystem::exists(file_or_name)) return load_retarget_map(file_or_name);
   for (const BuiltinText& m : builtin_retarget_map_texts())
     if (file_or_name == m.name) return builtin_retarget_map(file_or_name);
-  throw Error(file_or_name + ": no such map file, nor a built-in map (built in: " + listed(builtin_retarget_map_names()) + ")");
+  throw Error(file_or_name + ": no such map file, nor a built-in map (built in: " + builtin_retarget_map_list() + ")");
 }
 
 std::vector<std::string> builtin_maps_fitting(const Skeleton& source, const Skeleton& target) {

@@ -19,6 +19,8 @@ struct BuiltinText {
 const std::vector<BuiltinText>& builtin_retarget_map_texts();
 
 std::vector<std::string> builtin_retarget_map_names();
+// The same, comma-separated (for help texts and errors).
+std::string builtin_retarget_map_list();
 
 // Throws Error listing the built-in names when there is none of this name.
 RetargetMap builtin_retarget_map(const std::string& name);
