@@ -8,6 +8,7 @@
 #include "core/math.hpp"
 #include "motion/bvh.hpp"
 #include "motion/deepmimic.hpp"
+#include "motion/resample.hpp"
 #include "motion/retarget_maps.hpp"
 #include "test_data.hpp"
 
@@ -78,7 +79,9 @@ class RetargetCmu : public testing::Test {
     MIMIC_REQUIRE_SHARED("deepmimic/characters/humanoid3d.txt", ch);
     humanoid = load_deepmimic_character(ch).skeleton;
   }
-  Clip cmu(const AxisConvention& axes = AxisConvention{"y", "z", 0.056444}) const { return load_bvh(bvh, axes); }
+  // Its first 2 s (240 frames): what these tests compare needs no more, and the inverse
+  // kinematics of the whole clip takes minutes under the sanitizers.
+  Clip cmu(const AxisConvention& axes = AxisConvention{"y", "z", 0.056444}) const { return excerpt(load_bvh(bvh, axes), 0.0, 2.0); }
   std::filesystem::path bvh;
   Skeleton humanoid;
 };
@@ -173,10 +176,17 @@ TEST_F(RetargetCmu, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFa
     EXPECT_LT(rotation_distance(quarter * a.frames[f].rot[0], b.frames[f].rot[0]), 1e-6) << f;
     for (std::size_t j = 1; j < a.frames[f].rot.size(); ++j) EXPECT_LT(rotation_distance(a.frames[f].rot[j], b.frames[f].rot[j]), 1e-6) << f << " " << j;
   }
-  // Left as it was, the character would have walked sideways: facing +x, going along -y.
-  const Vec3 travel = b.frames.back().root_pos - b.frames.front().root_pos;
-  const Vec3 facing = b.frames.front().rot[0] * Vec3::UnitX();
-  EXPECT_GT(travel.normalized().dot(facing.normalized()), 0.9);
+  // Left as it was, the character would have walked sideways: facing +x, going along -y (a
+  // cosine near 0). The cosine between its mean facing over the 2 s and its travel is the one the
+  // clip read right gives (0.80: the root of this stylised walk turns its way a little).
+  const auto facing_along_travel = [](const Clip& clip) {
+    Vec3 travel = clip.frames.back().root_pos - clip.frames.front().root_pos, facing = Vec3::Zero();
+    for (const Pose& p : clip.frames) facing += p.rot[0] * Vec3::UnitX();
+    travel.z() = facing.z() = 0;
+    return travel.normalized().dot(facing.normalized());
+  };
+  EXPECT_NEAR(facing_along_travel(b), facing_along_travel(a), 1e-6);
+  EXPECT_GT(facing_along_travel(b), 0.7);
 }
 
 TEST_F(RetargetCmu, ASourceReadWithTheWrongUpAxisIsAnErrorThatSaysSo) {
