@@ -70,11 +70,12 @@ Skeleton skeleton_of(const std::vector<std::string>& names) {
   return sk;
 }
 
-// The shared CMU walk's first 2 s (240 of its 994 frames, written as a BVH of their own: what
-// these tests compare needs no more, and reading the whole file takes half a minute under the
-// sanitizers) and DeepMimic's humanoid. The tests skip without ../shared.
+// The shared CMU walk's first second (120 of its 994 frames, written as a BVH of their own: what
+// these tests compare needs no more, and each retarget's inverse kinematics takes seconds per
+// hundred frames under the sanitizers) and DeepMimic's humanoid. The tests skip without ../shared.
 class RetargetCmu : public testing::Test {
  protected:
+  static constexpr int kFrames = 120;
   void SetUp() override {
     std::filesystem::path whole, ch;
     MIMIC_REQUIRE_SHARED("cmu-bvh/131_01.bvh", whole);
@@ -84,9 +85,9 @@ class RetargetCmu : public testing::Test {
     const std::size_t motion = text.find("MOTION"), frame_time = text.find("Frame Time:");
     ASSERT_NE(frame_time, std::string::npos);
     std::size_t end = text.find('\n', frame_time);
-    for (int f = 0; f < 240 && end != std::string::npos; ++f) end = text.find('\n', end + 1);
+    for (int f = 0; f < kFrames && end != std::string::npos; ++f) end = text.find('\n', end + 1);
     bvh = test::temp_dir("retarget_cmu") / "131_01.bvh";
-    write_file_atomic(bvh, text.substr(0, motion) + "MOTION\nFrames: 240\n" + text.substr(frame_time, end + 1 - frame_time));
+    write_file_atomic(bvh, text.substr(0, motion) + "MOTION\nFrames: " + std::to_string(kFrames) + "\n" + text.substr(frame_time, end + 1 - frame_time));
   }
   Clip cmu(const AxisConvention& axes = AxisConvention{"y", "z", 0.056444}) const { return load_bvh(bvh, axes); }
   std::filesystem::path bvh;
@@ -137,7 +138,7 @@ TEST(RetargetMaps, ASourceJointIsTheFirstOfItsNamesAnsweringByNameOrAfterAPrefix
 
 TEST_F(RetargetCmu, ClipsNamedAsMixamoSmplOrAcclaimAreFoundByTheirMapsAndRetargetAsTheCmuMapRetargetsTheCmuClip) {
   const Clip capture = cmu();
-  ASSERT_EQ(capture.num_frames(), 240);
+  ASSERT_EQ(capture.num_frames(), kFrames);
   const Clip mixamo = renamed_as_mixamo(capture), spine1 = renamed_as_mixamo(capture, "Spine1");
   EXPECT_EQ(builtin_maps_fitting(capture.skeleton, humanoid), std::vector<std::string>{"cmu_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(mixamo.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
@@ -164,8 +165,8 @@ TEST_F(RetargetCmu, ClipsNamedAsMixamoSmplOrAcclaimAreFoundByTheirMapsAndRetarge
   for (const auto& [clip, map] : {std::pair{spine1, "mixamo_to_humanoid3d"}, std::pair{smpl, "smpl_to_humanoid3d"},
                                   std::pair{smpl_lower, "smpl_to_humanoid3d"}, std::pair{acclaim, "cmu_asf_to_humanoid3d"}}) {
     const Clip c = retarget(clip, humanoid, builtin_retarget_map(map));
-    for (std::size_t j = 0; j < c.frames[100].rot.size(); ++j) EXPECT_EQ(c.frames[100].rot[j].coeffs(), a.frames[100].rot[j].coeffs()) << map;
-    EXPECT_EQ(c.frames[100].root_pos, a.frames[100].root_pos) << map;
+    for (std::size_t j = 0; j < c.frames[90].rot.size(); ++j) EXPECT_EQ(c.frames[90].rot[j].coeffs(), a.frames[90].rot[j].coeffs()) << map;
+    EXPECT_EQ(c.frames[90].root_pos, a.frames[90].root_pos) << map;
   }
 }
 
@@ -179,14 +180,14 @@ TEST_F(RetargetCmu, ASourceReadWithTheWrongForwardAxisIsFollowedFacingTheWayItFa
   EXPECT_EQ(right.source_turn, 0);
   EXPECT_EQ(wrong.source_turn, -90);
   const Quat quarter(Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitZ()));
-  for (std::size_t f = 0; f < a.frames.size(); f += 50) {
+  for (std::size_t f = 0; f < a.frames.size(); f += 30) {
     EXPECT_LT((quarter * a.frames[f].root_pos - b.frames[f].root_pos).norm(), 1e-6) << f;
     EXPECT_LT(rotation_distance(quarter * a.frames[f].rot[0], b.frames[f].rot[0]), 1e-6) << f;
     for (std::size_t j = 1; j < a.frames[f].rot.size(); ++j) EXPECT_LT(rotation_distance(a.frames[f].rot[j], b.frames[f].rot[j]), 1e-6) << f << " " << j;
   }
   // Left as it was, the character would have walked sideways: facing +x, going along -y (a
-  // cosine near 0). The cosine between its mean facing over the 2 s and its travel is the one the
-  // clip read right gives (0.80: the root of this stylised walk turns its way a little).
+  // cosine near 0). The cosine between its mean facing over the second and its travel is the one
+  // the clip read right gives (below 1: the root of this stylised walk sways and turns).
   const auto facing_along_travel = [](const Clip& clip) {
     Vec3 travel = clip.frames.back().root_pos - clip.frames.front().root_pos, facing = Vec3::Zero();
     for (const Pose& p : clip.frames) facing += p.rot[0] * Vec3::UnitX();
