@@ -144,6 +144,10 @@ TEST_F(RetargetCmu, ClipsNamedAsMixamoSmplOrAcclaimAreFoundByTheirMapsAndRetarge
   EXPECT_EQ(builtin_maps_fitting(mixamo.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(spine1.skeleton, humanoid), std::vector<std::string>{"mixamo_to_humanoid3d"});
   EXPECT_TRUE(builtin_maps_fitting(skeleton_of({"Pelvis", "Spine"}), humanoid).empty());
+  std::vector<std::string> both;  // CMU's names and Mixamo's in one skeleton: both maps fit (the commands then ask for --map)
+  for (const Clip* c : {&capture, &mixamo})
+    for (const Joint& j : c->skeleton.joints) both.push_back(j.name);
+  EXPECT_EQ(builtin_maps_fitting(skeleton_of(both), humanoid), (std::vector<std::string>{"cmu_to_humanoid3d", "mixamo_to_humanoid3d"}));
   const Clip smpl = renamed_as_smpl(capture, false), smpl_lower = renamed_as_smpl(capture, true), acclaim = renamed_as_acclaim(capture);
   EXPECT_EQ(builtin_maps_fitting(smpl.skeleton, humanoid), std::vector<std::string>{"smpl_to_humanoid3d"});
   EXPECT_EQ(builtin_maps_fitting(smpl_lower.skeleton, humanoid), std::vector<std::string>{"smpl_to_humanoid3d"});

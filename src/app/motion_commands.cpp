@@ -72,7 +72,11 @@ RetargetMap fitting_builtin_map(const Clip& clip, const std::filesystem::path& i
   if (fitting.empty())
     throw Error(input.string() + ": no built-in map fits its joints onto " + target_file.string() + " (built in: " + builtin_retarget_map_list() +
                 "); give --map MAP.yaml (docs/retargeting.md)");
-  if (fitting.size() > 1) throw Error(input.string() + ": several built-in maps fit (" + fitting[0] + ", " + fitting[1] + "...); choose one with --map");
+  if (fitting.size() > 1) {
+    std::string names;
+    for (const std::string& n : fitting) names += (names.empty() ? "" : ", ") + n;
+    throw Error(input.string() + ": several built-in maps fit (" + names + "); choose one with --map");
+  }
   spdlog::info("{}: its joints are those of the built-in map {}", input.string(), fitting.front());
   return builtin_retarget_map(fitting.front());
 }

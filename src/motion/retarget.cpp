@@ -142,14 +142,12 @@ std::string joined(const std::vector<std::string>& names) {
 // The turn about the vertical, in quarter turns (0-3), that best takes the target's rest pose onto
 // the source's: the mapped joints' horizontal offsets from the root, matched in 2-D (Kabsch), the
 // angle rounded to the nearest quarter turn. A source imported with the right axes gives 0.
-int rest_quarter_turns(const Skeleton& src, const LinkFrames& src_rest, const Skeleton& tgt, const LinkFrames& tgt_rest,
-                       const std::vector<int>& source_of) {
+int rest_quarter_turns(const LinkFrames& src_rest, const LinkFrames& tgt_rest, const std::vector<int>& source_of) {
   double dot = 0.0, cross = 0.0;
   const Vec3 t0 = tgt_rest.joint_pos[0], s0 = src_rest.joint_pos[static_cast<std::size_t>(source_of[0])];
-  for (int t = 1; t < tgt.num_joints(); ++t) {
-    const int s = source_of[static_cast<std::size_t>(t)];
-    if (s < 0 || s >= src.num_joints()) continue;
-    const Vec3 a = tgt_rest.joint_pos[static_cast<std::size_t>(t)] - t0, b = src_rest.joint_pos[static_cast<std::size_t>(s)] - s0;
+  for (std::size_t t = 1; t < source_of.size(); ++t) {
+    if (source_of[t] < 0) continue;
+    const Vec3 a = tgt_rest.joint_pos[t] - t0, b = src_rest.joint_pos[static_cast<std::size_t>(source_of[t])] - s0;
     dot += a.x() * b.x() + a.y() * b.y();
     cross += a.x() * b.y() - a.y() * b.x();
   }
@@ -226,7 +224,7 @@ Clip retarget(const Clip& src, const Skeleton& target_in, const RetargetMap& map
     throw Error(map.source + ": the source does not stand up at rest along the up axis it was read with (its mapped joints' heights " +
                 "agree with the target's by " + value + ", where 1 is alike and 0 lying); read it with the right --up (y for most BVH files)");
   }
-  const int turns = rest_quarter_turns(src.skeleton, src_rest, target, tgt_rest, source_of);
+  const int turns = rest_quarter_turns(src_rest, tgt_rest, source_of);
   if (turns != 0) turn_about_vertical(tgt_rest, turns);
   std::vector<int> mapped_child(static_cast<std::size_t>(nt), -1);
   for (int c = nt - 1; c > 0; --c)

@@ -1,6 +1,7 @@
 #include "motion/retarget_maps.hpp"
 
 #include <filesystem>
+#include <optional>
 
 #include "core/error.hpp"
 
@@ -18,16 +19,23 @@ std::string builtin_retarget_map_list() {
   return out;
 }
 
-RetargetMap builtin_retarget_map(const std::string& name) {
+namespace {
+// The built-in map of this name, parsed; none where there is no such map.
+std::optional<RetargetMap> find_builtin(const std::string& name) {
   for (const BuiltinText& m : builtin_retarget_map_texts())
     if (name == m.name) return parse_retarget_map(m.text, "built-in map " + name);
+  return std::nullopt;
+}
+}  // namespace
+
+RetargetMap builtin_retarget_map(const std::string& name) {
+  if (std::optional<RetargetMap> map = find_builtin(name)) return *map;
   throw Error("no built-in retarget map '" + name + "' (built in: " + builtin_retarget_map_list() + ")");
 }
 
 RetargetMap load_retarget_map_or_builtin(const std::string& file_or_name) {
   if (std::filesystem::exists(file_or_name)) return load_retarget_map(file_or_name);
-  for (const BuiltinText& m : builtin_retarget_map_texts())
-    if (file_or_name == m.name) return builtin_retarget_map(file_or_name);
+  if (std::optional<RetargetMap> map = find_builtin(file_or_name)) return *map;
   throw Error(file_or_name + ": no such map file, nor a built-in map (built in: " + builtin_retarget_map_list() + ")");
 }
 
