@@ -112,7 +112,15 @@ cat > "$out/window.sh" <<WINDOW
 set -euo pipefail
 "$mimic" play "$walk" "$run" --tau -1 --width 320 --height 180 --seconds 3 --screenshot "$out/shot.ppm" --json "$out/window.json" &
 pid=\$!
-win=\$(xdotool search --sync --onlyvisible --name "mimic play" | head -1)
+# Polled rather than 'xdotool search --sync': a search dies on an X error (BadWindow) when a window
+# it lists is gone before it reads it, as the short-lived windows of GL's start-up are.
+win=
+for _ in \$(seq 600); do
+  win=\$(xdotool search --onlyvisible --name "mimic play" 2> /dev/null | head -1) || true
+  [ -n "\$win" ] && break
+  sleep 0.1
+done
+[ -n "\$win" ] || { echo "no 'mimic play' window within 60 s"; exit 1; }
 xdotool windowfocus --sync "\$win" key 2
 wait \$pid
 WINDOW
