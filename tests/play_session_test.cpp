@@ -3,13 +3,16 @@
 // the character, recovery handing over and back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <mujoco/mujoco.h>
 
 #include "control/play_session.hpp"
 #include "error_message.hpp"
 #include "motion/clip_io.hpp"
+#include "motion/kinematics.hpp"
 #include "mimic/runtime.hpp"
 #include "test_data.hpp"
 
@@ -205,6 +208,34 @@ TEST(PlaySession, TheSkillAskedForTakesTheCharacterBackOnlyOnceTheGetUpIsDone) {
   EXPECT_EQ(tc.skill(), "up");
   EXPECT_FALSE(t.down());
   EXPECT_EQ(tc.requested(), "");
+
+  // And with a stand-in whose clip ends at the walk's root height but with the arms raised
+  // overhead (the shoulders turned half a turn about the forward axis): its highest joint, a
+  // wrist, is above the walking character's highest (the neck) by more than a quarter, so the root's
+  // height alone does not make it done.
+  Clip reach = load_motion(up_clip);
+  const LinkFrames hanging = forward_kinematics(reach.skeleton, reach.frames.back());
+  for (const char* shoulder : {"right_shoulder", "left_shoulder"})
+    reach.frames.back().rot[static_cast<std::size_t>(reach.skeleton.find(shoulder))] = Quat(Eigen::AngleAxisd(std::numbers::pi, Vec3::UnitX()));
+  const LinkFrames raised = forward_kinematics(reach.skeleton, reach.frames.back());
+  auto top = [](const LinkFrames& f) { double z = 0; for (const Vec3& p : f.joint_pos) z = std::max(z, p.z()); return z; };
+  ASSERT_GT(top(raised), top(hanging) / 0.8) << "the raised wrists " << top(raised) << " m, the clip's own end " << top(hanging) << " m";
+  const std::filesystem::path reach_path = test::temp_dir("play_session_reach") / "reach_getup.mclip";
+  save_clip(reach, reach_path);
+  const auto reach_up = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + reach_path.string()});
+  PlaySession r({walk, reach_up}, o);
+  Controller& rc = r.controller();
+  rc.start("walk", lying, Eigen::VectorXd::Zero(rc.physics_model()->nv));
+  while (!r.recovering()) r.step();
+  const double reach_took = r.time();
+  rc.start("up", walking_q, walking_v);
+  for (int i = 0; i < 15; ++i) r.step();
+  EXPECT_GT(rc.highest_joint_height(), 1.2) << "a walking character's neck";
+  EXPECT_LT(rc.highest_joint_height(), 0.8 * top(raised));
+  while (r.time() < reach_took + 4.5) r.step();
+  EXPECT_TRUE(r.recovering());
+  EXPECT_FALSE(r.down());
+  EXPECT_EQ(rc.requested(), "");
 }
 
 }  // namespace

@@ -177,6 +177,9 @@ class Controller {
   double time() const;               // seconds since reset()
   long long steps() const;           // since reset()
   Eigen::Vector3d root_position() const;  // world frame, metres, z up
+  // The highest of the character's joints above the ground under its root, metres (the head's
+  // when it stands; lower bent over or kneeling); 0 for a skill that drives no character.
+  double highest_joint_height() const;
   // Which side the character lies on: +1 face up, -1 face down (its root's forward axis more than
   // 30 degrees above or below the horizontal), 0 neither (standing, on its side, or a skill that
   // drives no character). Recovery hands a fallen character to the get-up of its side.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <random>
 #include <tuple>
 
@@ -413,6 +414,15 @@ Eigen::Vector3d Controller::root_position() const {
   if (!m || !d || m->nbody < 2) return Eigen::Vector3d::Zero();
   return Eigen::Vector3d(d->xpos[3], d->xpos[4], d->xpos[5]);
 }
+double Controller::highest_joint_height() const {
+  const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
+  if (!character) return 0.0;
+  const Vec3 root = character->world().root_position();
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : character->world().link_frames().joint_pos) top = std::max(top, p.z());
+  return top - character->terrain().height(root.x(), root.y());
+}
+
 int Controller::lying_side() const {
   const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);
   return character ? mimic::lying_side(character->world().pose()) : 0;

@@ -8,12 +8,14 @@
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
 #include "motion/clip.hpp"
+#include "motion/kinematics.hpp"
 
 namespace mimic {
 
 namespace {
-// A get-up has stood the character up when its root is at least this share of the height its clip
-// ends at (a kneel, or a crouch on the way up, is lower).
+// A get-up has stood the character up when its root and its highest joint are at least this share
+// of the heights they have at its clip's end (a kneel, a crouch on the way up, or a body bent over
+// at the hips, is lower).
 constexpr double kStandingShare = 0.8;
 }  // namespace
 
@@ -29,7 +31,12 @@ PlaySession::PlaySession(std::vector<std::shared_ptr<const Skill>> skills, PlayO
     const auto clips = skill_clips(**it);
     recovery_sides_.push_back(!clips.empty() && begins_lying(*clips.front()) ? lying_side(clips.front()->frames.front()) : 0);
     recovery_seconds_.push_back(clips.empty() ? 0.0 : clips.front()->duration());
-    recovery_heights_.push_back(clips.empty() || clips.front()->frames.empty() ? 0.0 : kStandingShare * clips.front()->frames.back().root_pos.z());
+    const bool framed = !clips.empty() && !clips.front()->frames.empty();
+    recovery_heights_.push_back(framed ? kStandingShare * clips.front()->frames.back().root_pos.z() : 0.0);
+    double top = 0.0;
+    if (framed)
+      for (const Vec3& p : forward_kinematics(clips.front()->skeleton, clips.front()->frames.back()).joint_pos) top = std::max(top, p.z());
+    recovery_tops_.push_back(kStandingShare * top);
   }
   reset();
   events_.clear();
@@ -126,7 +133,8 @@ bool PlaySession::get_up_done() const {
   const auto i = static_cast<std::size_t>(at - options_.recovery.begin());
   const Eigen::Vector3d root = controller_.root_position();
   return !down_.down() && time_ - get_up_since_ >= recovery_seconds_[i] - 1e-9 &&
-         root.z() - controller_.ground_height(root.x(), root.y()) >= recovery_heights_[i];
+         root.z() - controller_.ground_height(root.x(), root.y()) >= recovery_heights_[i] &&
+         controller_.highest_joint_height() >= recovery_tops_[i];
 }
 
 void PlaySession::hand_back() {

@@ -30,7 +30,8 @@ struct PlayOptions {
   int down_frames = 10;
   // The score (seed 004 eq. 6) at which the skill asked for takes the character back from a get-up
   // once the get-up is done (it has had the character for its clip's duration, the character is
-  // up by the down rule and its root at least 80 % of the height the clip ends at); -1: at once
+  // up by the down rule, its root and its highest joint each at least 80 % of the heights they
+  // have at the clip's end: standing, not bent over or kneeling); -1: at once
   // then. A skill's discriminators rate a character standing still low (the shipped walk's: -0.4
   // to -0.5 on the get-up clips' last frames), so a positive threshold may never hand back.
   double hand_back_threshold = -1.0;
@@ -79,7 +80,8 @@ class PlaySession {
   std::string get_up_for(int side);
   void hand_to_get_up(const std::string& get_up);
   // The active get-up is done: it has had the character for its clip's duration, the character is
-  // up by the down rule and its root stands at least 80 % of the height the clip ends at.
+  // up by the down rule, and its root and its highest joint stand at least 80 % of the heights
+  // they have at the clip's end (bent over, or kneeling, the highest joint is lower).
   bool get_up_done() const;
   void hand_back();  // the get-up is done: the skill asked for is requested by the hand-back's rule
 
@@ -92,6 +94,7 @@ class PlaySession {
   int other_side_frames_ = 0;        // recovering: frames in a row lying on the other get-up's side
   std::vector<double> recovery_seconds_;  // per recovery skill: its clip's duration
   std::vector<double> recovery_heights_;  // and the root height above the ground it counts as standing
+  std::vector<double> recovery_tops_;     // and the highest joint's height it counts as standing
   double get_up_since_ = 0.0;        // when the get-up that has the character took it
   bool handing_back_ = false;        // the get-up is done and the skill asked for is requested
   double time_ = 0.0;
