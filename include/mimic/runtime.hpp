@@ -194,6 +194,7 @@ class Controller {
   struct Impl;
 
  private:
+  friend struct ControllerInternals;  // the control layer's own reads (src/control/controller_internals.hpp)
   std::unique_ptr<Impl> impl_;
 };
 

@@ -14,11 +14,13 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "control/controller_internals.hpp"
 #include "control/navigation.hpp"
 #include "control/play_session.hpp"
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "motion/clip_io.hpp"
 #include "render/offscreen.hpp"
 #include "render/video_writer.hpp"
 #include "render/window.hpp"
@@ -77,7 +79,7 @@ struct Args {
   std::string rule = "score";
   double tau = 0.2, time_limit = 2.0, recover_tau = -1.0;
   int delay = 0;
-  std::filesystem::path script, output, json, screenshot;
+  std::filesystem::path script, output, json, screenshot, motion;
   double seconds = 0;
   bool headless = false;
   int width = 960, height = 540;
@@ -192,7 +194,10 @@ std::vector<std::shared_ptr<const Skill>> load_skills(const Args& a) {
 void run_play(const Args& a) {
   if (a.models.empty()) throw Error("play: give at least one model");
   if (a.models.size() + a.recover.size() > 9) throw Error("play: at most 9 skills (keys 1-9), --recover ones included");
-  if (a.headless && a.output.empty() && a.json.empty()) throw Error("play --headless: give -o (a video) or --json (the events), or both");
+  if (a.headless && a.output.empty() && a.json.empty() && a.motion.empty())
+    throw Error("play --headless: give -o (a video), --json (the events) or --motion (the character's motion)");
+  if (!a.motion.empty() && a.motion.extension() != ".mclip")
+    throw Error("play --motion " + a.motion.string() + ": the character's motion is written as an .mclip (mimic motion convert makes other formats of it)");
   const std::vector<ScriptLine> script = a.script.empty() ? std::vector<ScriptLine>{} : read_script(a.script);
   double seconds = a.seconds;
   if (a.headless && seconds <= 0) {
@@ -246,9 +251,21 @@ void run_play(const Args& a) {
                          : "");
   const std::string driver = navigator ? navigator->controller()->name() : std::string();
   // One control step: the controller's decision where one is due, then the skill's step.
+  // The character's motion (--motion): its pose at the start and after every control step taken.
+  std::unique_ptr<Clip> motion;
+  if (!a.motion.empty()) {
+    const CharacterEnv* character = ControllerInternals::active_character(session.controller());
+    if (!character) throw Error("play --motion: skill '" + skills.front()->name() + "' drives no character");
+    motion = std::make_unique<Clip>();
+    motion->name = a.motion.stem().string();
+    motion->skeleton = character->world().character().skeleton;
+    motion->fps = 1.0 / session.controller().control_dt();
+    motion->frames.push_back(character->world().pose());
+  }
   auto advance = [&] {
     if (navigator) navigator->drive(session.controller());
     session.step();
+    if (motion) motion->frames.push_back(ControllerInternals::active_character(session.controller())->world().pose());
   };
 
   const double dt = session.controller().control_dt();
@@ -327,6 +344,10 @@ void run_play(const Args& a) {
     }
   }
   log_events();
+  if (motion) {
+    save_clip(*motion, a.motion);
+    spdlog::info("wrote {} ({} frames, {:.2f} s)", a.motion.string(), motion->num_frames(), motion->duration());
+  }
   if (!a.json.empty()) {
     write_file_atomic(a.json, events_json(session.events()));
     spdlog::info("wrote {} ({} events)", a.json.string(), session.events().size());
@@ -359,6 +380,8 @@ void add_play_command(CLI::App& app) {
   play->add_option("-o,--output", a->output, "video (.mp4): headless, the whole session; in the window, what v records (default play.mp4)");
   play->add_option("--json", a->json, "the session's events: [{t, event, skill}] (request, switch, dropped, down, recovering, recovered, push, cube, steer, reset)");
   play->add_option("--screenshot", a->screenshot, "the window's last frame, as a PPM picture");
+  play->add_option("--motion", a->motion, "the character's motion over the session, a pose every control step (paused steps left out), as an .mclip: "
+                   "for mimic motion convert, another program, or start clips");
   play->add_option("--width", a->width, "pixels")->capture_default_str()->check(CLI::Range(16, 1920));
   play->add_option("--height", a->height, "pixels")->capture_default_str()->check(CLI::Range(16, 1080));
   play->add_option("--push-force", a->push_force, "newtons of a push (p), for 0.2 s")->capture_default_str()->check(CLI::PositiveNumber);

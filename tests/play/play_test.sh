@@ -24,7 +24,7 @@ cat > "$out/session.txt" <<'SCRIPT'
 0.6 p   # a push
 0.8 b   # a cube
 SCRIPT
-play --headless --script "$out/session.txt" --seconds 1.2 -o "$out/session.mp4" --json "$out/events.json" > "$out/headless.log" 2>&1 ||
+play --headless --script "$out/session.txt" --seconds 1.2 -o "$out/session.mp4" --json "$out/events.json" --motion "$out/session.mclip" > "$out/headless.log" 2>&1 ||
   { cat "$out/headless.log"; fail "mimic play --headless"; }
 events=$(tr -d ' \n' < "$out/events.json")
 for want in '{"t":0.3,"event":"request","skill":"humanoid_run_iccgan_straight_loop"}' \
@@ -36,6 +36,11 @@ done
 [[ $events == '[{"t":0,"event":"reset"'* ]] && fail "the session's own start is not an event: $events"
 [ -s "$out/session.mp4" ] || fail "no video"
 grep -q "wrote $out/session.mp4 (36 frames)" "$out/headless.log" || { cat "$out/headless.log"; fail "1.2 s at 30 Hz is 36 frames"; }
+# The character's motion: the start and 36 steps at the control rate, walking then running on.
+"$mimic" motion info "$out/session.mclip" > "$out/motion.txt" 2>&1 || { cat "$out/motion.txt"; fail "the session's motion is no clip"; }
+grep -q "frames      37 at 30.000 Hz = 1.200 s" "$out/motion.txt" || { cat "$out/motion.txt"; fail "the motion is not the start and 36 steps at 30 Hz"; }
+travel=$(awk '/^travel/ {print $2}' "$out/motion.txt")
+awk -v t="$travel" 'BEGIN {exit !(t > 1.0)}' || fail "the motion travels $travel m in 1.2 s of walking and running (more than 1 m expected)"
 
 # Skills in runs' model directories (what mimic imitate writes: RUN/model) are named by their runs.
 mkdir -p "$out/my_walk" "$out/my_run"
@@ -65,8 +70,10 @@ printf '1.0 2\n0.5 1\n' > "$out/backwards.txt"
 bad "backwards.txt:2: the times must not go back" --headless --script "$out/backwards.txt" --json "$out/never.json"
 printf 'soon 2\n' > "$out/bad_time.txt"
 bad "bad_time.txt:1: 'soon' is not a time in seconds" --headless --script "$out/bad_time.txt" --json "$out/never.json"
-bad "give -o (a video) or --json" --headless --seconds 1
+bad "give -o (a video), --json (the events) or --motion" --headless --seconds 1
 bad "give --seconds, or a --script" --headless --json "$out/never.json"
+bad "the character's motion is written as an .mclip" --headless --seconds 1 --motion "$out/never.bvh"
+[ ! -e "$out/never.bvh" ] || fail "a refused --motion was written"
 bad "two skills are named 'humanoid_walk_iccgan'" --recover "$walk/" --headless --seconds 1 --json "$out/never.json"
 [ ! -e "$out/never.json" ] || fail "a failed play wrote its events"
 (unset DISPLAY; bad "DISPLAY is not set: run with --headless, or under xvfb-run" --seconds 1)
