@@ -535,7 +535,7 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   # episodes from, copied into the run and its model; the model acts from its own starts.)
   run_ok(imitate ${OUT}/jj_mirror.mclip --task heading --from ${OUT}/imitated_model -o ${OUT}/imitate_steer --samples 1 --trials 1
          --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2
-         --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt@-0.5)
+         --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt@-0.5 ${DATA}/deepmimic/motions/humanoid3d_walk.txt@0:0.3)
   string(FIND "${LAST_OUT}" "was trained in another environment" other_env)
   if(NOT other_env EQUAL -1)
     message(FATAL_ERROR "imitate --from warned of another environment where only the task's keys differ:\n${LAST_OUT}")
@@ -545,13 +545,16 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
          --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=3)
   expect_in("${LAST_OUT}" "was trained in another environment than the recipe's (max_seconds: 2 in the model, 3 in the run)")
   file(READ ${OUT}/imitate_steer/config.yaml imitate_steer_config)
-  expect_in("${imitate_steer_config}" "start_clips: [start_clips/humanoid3d_walk.mclip]")
+  # Two stretches of one clip: two files, the second's name made distinct.
+  expect_in("${imitate_steer_config}" "start_clips: [start_clips/humanoid3d_walk.mclip, start_clips/humanoid3d_walk_2.mclip]")
   if(NOT EXISTS ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)
     message(FATAL_ERROR "mimic imitate --start-clips: the model has no start_clips/humanoid3d_walk.mclip")
   endif()
   # CLIP@-0.5: the walk's frames within its last 0.5 s, 23 to 38 of 0 to 38 (from 38 - 0.5 * 30.001).
   run_ok(motion info ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)
   expect_in("${LAST_OUT}" "16 at 30.001 Hz = 0.500 s, loop none")
+  run_ok(motion info ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk_2.mclip)
+  expect_in("${LAST_OUT}" "10 at 30.001 Hz = 0.300 s, loop none")
   run_fails("humanoid3d_walk.txt@-2: 0.000 to 1.267 s is not a stretch of clip 'humanoid3d_walk', which is 1.267 s long" imitate
             ${OUT}/jj_mirror.mclip --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt@-2 -o ${OUT}/imitate_too_long)
   if(EXISTS ${OUT}/imitate_too_long)

@@ -155,6 +155,18 @@ std::vector<ClipStretch> start_clip_stretches(const std::vector<std::string>& te
   return out;
 }
 
+// Clips named alike (two stretches of one clip, or two files of one name) are kept apart in the
+// run's files: the second of a name becomes NAME_2, the third NAME_3, and so on.
+void distinct_names(std::vector<Clip>& clips) {
+  std::vector<std::string> taken;
+  for (Clip& c : clips) {
+    std::string name = c.name;
+    for (int k = 2; std::find(taken.begin(), taken.end(), name) != taken.end(); ++k) name = c.name + "_" + std::to_string(k);
+    c.name = name;
+    taken.push_back(name);
+  }
+}
+
 // The recipe's changes for --task heading (seed 004 eq. 8's goal mixing, docs/imitate.md): the
 // environment draws a target heading every 4 s within 90 degrees of where the character faces,
 // the policy observes it, and the reward is 0.5 of the goal term plus 0.5 of the recipe's
@@ -225,7 +237,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   } else if (!fs::is_regular_file(character)) {
     throw Error("--character " + character.string() + ": not found");
   }
-  const std::vector<Clip> clips = clips_on_character(a, a.clips, character);
+  std::vector<Clip> clips = clips_on_character(a, a.clips, character);
+  distinct_names(clips);
   std::vector<Clip> start_clips;
   {
     const std::vector<ClipStretch> stretches = start_clip_stretches(a.start_clips);
@@ -233,6 +246,7 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     for (const ClipStretch& s : stretches) files.emplace_back(s.file);
     start_clips = clips_on_character(a, files, character);
     for (std::size_t i = 0; i < start_clips.size(); ++i) start_clips[i] = cut(start_clips[i], stretches[i]);
+    distinct_names(start_clips);
   }
   const std::string recipe_source = "configs/recipes/" + a.method + ".yaml";
   std::vector<std::string> own = task_settings(a);
