@@ -13,6 +13,13 @@
 #                                 models/humanoid_walk_iccgan_from_standing, made by its one command
 #                                 into runs/ where it is not there (1.5·10^6 samples, about 45 min
 #                                 at one thread; a run already there is resumed)
+#   scripts/recovery.sh walk      the walk a recovery hands the character back to, made where it is
+#                                 not in runs/: the shipped walk fine-tuned (1.5·10^6 samples, about
+#                                 20 min at two threads) to set off from where the get-ups actually
+#                                 leave a character, the 0.3 s before each hand-back of 40 recorded
+#                                 sessions (the shipped walk pushed down, got up; seeds 1-40:
+#                                 runs/getup_ends/, `mimic play --motion`), and from where the get-up
+#                                 clips end (their last 0.3 s): runs/humanoid_walk_after_getups
 #   scripts/recovery.sh           curve and session
 #
 # The get-ups are GETUPS (default: models/humanoid_getup_facedown and models/humanoid_getup_faceup,
@@ -28,7 +35,7 @@ motions=${MIMIC_DATA:-../shared/data}/deepmimic/motions
 read -r -a getups <<<"${GETUPS:-models/humanoid_getup_facedown models/humanoid_getup_faceup}"
 parts=("$@")
 [[ ${#parts[@]} -gt 0 ]] || parts=(curve session)
-if [[ " ${parts[*]} " == *" curve "* || " ${parts[*]} " == *" session "* ]]; then
+if [[ " ${parts[*]} " == *" curve "* || " ${parts[*]} " == *" session "* || " ${parts[*]} " == *" walk "* ]]; then
   for g in "${getups[@]}"; do
     [[ -f $g/networks.mimic ]] || { echo "recovery.sh: no get-up model in $g (scripts/zoo.sh makes them)" >&2; exit 2; }
   done
@@ -75,6 +82,29 @@ for part in "${parts[@]}"; do
       # The fine-tune's own walk, by the imitation protocol.
       "$mimic" eval "$fine" --episodes 1 --trials 20 --clip "$motions/humanoid3d_walk.txt" --json docs/data/standing_fine_tuned_style.json
       ;;
-    *) echo "recovery.sh: unknown part '$part' (curve, session, standing)" >&2; exit 2 ;;
+    walk)
+      ends=runs/getup_ends
+      run=runs/humanoid_walk_after_getups
+      if [[ ! -f $run/config.yaml ]]; then
+        mkdir -p "$ends"
+        printf '%s\n' "# the walk pushed down" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$ends/pushes.txt"
+        starts=("$motions/humanoid3d_getup_faceup.txt@-0.3" "$motions/humanoid3d_getup_facedown.txt@-0.3")
+        for seed in $(seq 40); do
+          [[ -f $ends/session_$seed.json ]] ||
+            "$mimic" play models/humanoid_walk_iccgan --recover "${getups[@]}" --headless --script "$ends/pushes.txt" --seconds 20 \
+              --push-force 900 --seed "$seed" --motion "$ends/session_$seed.mclip" --json "$ends/session_$seed.json" >/dev/null
+          # The 0.3 s that end 0.1 s before each hand-back (the get-up's, before the walk acts).
+          while read -r t; do
+            starts+=("$ends/session_$seed.mclip@$(awk -v t="$t" 'BEGIN {printf "%.4f:%.4f", t - 0.4, t - 0.1}')")
+          done < <(sed -n 's/.*"t": \([0-9.]*\), "event": "recovered".*/\1/p' "$ends/session_$seed.json")
+        done
+        echo "recovery.sh: $((${#starts[@]} - 2)) hand-backs in 40 sessions, and the get-up clips' ends"
+        "$mimic" imitate "$motions/humanoid3d_walk.txt" --from models/humanoid_walk_iccgan --samples 1500000 \
+          --start-clips "${starts[@]}" -o "$run"
+      elif [[ ! -f $run/model/networks.mimic ]]; then
+        "$mimic" imitate --resume -o "$run"
+      fi
+      ;;
+    *) echo "recovery.sh: unknown part '$part' (curve, session, standing, walk)" >&2; exit 2 ;;
   esac
 done
