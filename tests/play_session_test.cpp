@@ -190,29 +190,36 @@ TEST(PlaySession, TheSkillAskedForTakesTheCharacterBackOnlyOnceTheGetUpIsDone) {
   EXPECT_GE(back, took + 3.77 - 1e-9);
   EXPECT_LE(back, took + 3.77 + 2.0 / 30.0) << "at once when done (the request, then the take-over a step later)";
 
-  // The same with a stand-in whose clip ends with the root 2 m up: standing means at least 80 % of
-  // that, which a walking character never reaches, so the get-up is never done.
+  // A stand-in whose clip ends where a walking character never stands is never done: laid down,
+  // taken by it, then given the walking state, the character is up for 4.5 s and not handed back.
+  // Returns the character's highest joint 15 steps into the walking state.
+  auto never_done = [&](const Clip& clip, const std::string& file) {
+    const std::filesystem::path path = test::temp_dir("play_session_" + file) / (file + ".mclip");
+    save_clip(clip, path);
+    const auto stand_in = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + path.string()});
+    PlaySession t({walk, stand_in}, o);
+    Controller& tc = t.controller();
+    tc.start("walk", lying, Eigen::VectorXd::Zero(tc.physics_model()->nv));
+    while (!t.recovering()) t.step();
+    const double stand_in_took = t.time();
+    tc.start("up", walking_q, walking_v);
+    for (int i = 0; i < 15; ++i) t.step();
+    const double top = tc.highest_joint_height();
+    while (t.time() < stand_in_took + 4.5) t.step();
+    EXPECT_TRUE(t.recovering()) << file;
+    EXPECT_EQ(tc.skill(), "up") << file;
+    EXPECT_FALSE(t.down()) << file;
+    EXPECT_EQ(tc.requested(), "") << file;
+    return top;
+  };
+  // The clip ends with the root 2 m up: standing means at least 80 % of that.
   Clip tall = load_motion(up_clip);
   tall.frames.back().root_pos.z() = 2.0;
-  const std::filesystem::path tall_path = test::temp_dir("play_session_tall") / "tall_getup.mclip";
-  save_clip(tall, tall_path);
-  const auto tall_up = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + tall_path.string()});
-  PlaySession t({walk, tall_up}, o);
-  Controller& tc = t.controller();
-  tc.start("walk", lying, Eigen::VectorXd::Zero(tc.physics_model()->nv));
-  while (!t.recovering()) t.step();
-  const double tall_took = t.time();
-  tc.start("up", walking_q, walking_v);
-  while (t.time() < tall_took + 4.5) t.step();
-  EXPECT_TRUE(t.recovering());
-  EXPECT_EQ(tc.skill(), "up");
-  EXPECT_FALSE(t.down());
-  EXPECT_EQ(tc.requested(), "");
-
-  // And with a stand-in whose clip ends at the walk's root height but with the arms raised
-  // overhead (the shoulders turned half a turn about the forward axis): its highest joint, a
-  // wrist, is above the walking character's highest (the neck) by more than a quarter, so the root's
-  // height alone does not make it done.
+  (void)never_done(tall, "tall_getup");
+  // The clip ends at the walk's root height but with the arms raised overhead (the shoulders
+  // turned half a turn about the forward axis): its highest joint, a wrist, is above the walking
+  // character's highest (the neck) by more than a quarter, so the root's height alone does not make
+  // it done.
   Clip reach = load_motion(up_clip);
   const LinkFrames hanging = forward_kinematics(reach.skeleton, reach.frames.back());
   for (const char* shoulder : {"right_shoulder", "left_shoulder"})
@@ -220,22 +227,9 @@ TEST(PlaySession, TheSkillAskedForTakesTheCharacterBackOnlyOnceTheGetUpIsDone) {
   const LinkFrames raised = forward_kinematics(reach.skeleton, reach.frames.back());
   auto top = [](const LinkFrames& f) { double z = 0; for (const Vec3& p : f.joint_pos) z = std::max(z, p.z()); return z; };
   ASSERT_GT(top(raised), top(hanging) / 0.8) << "the raised wrists " << top(raised) << " m, the clip's own end " << top(hanging) << " m";
-  const std::filesystem::path reach_path = test::temp_dir("play_session_reach") / "reach_getup.mclip";
-  save_clip(reach, reach_path);
-  const auto reach_up = Skill::load(kModels / "humanoid_walk_iccgan", "up", {"env.clip=" + reach_path.string()});
-  PlaySession r({walk, reach_up}, o);
-  Controller& rc = r.controller();
-  rc.start("walk", lying, Eigen::VectorXd::Zero(rc.physics_model()->nv));
-  while (!r.recovering()) r.step();
-  const double reach_took = r.time();
-  rc.start("up", walking_q, walking_v);
-  for (int i = 0; i < 15; ++i) r.step();
-  EXPECT_GT(rc.highest_joint_height(), 1.2) << "a walking character's neck";
-  EXPECT_LT(rc.highest_joint_height(), 0.8 * top(raised));
-  while (r.time() < reach_took + 4.5) r.step();
-  EXPECT_TRUE(r.recovering());
-  EXPECT_FALSE(r.down());
-  EXPECT_EQ(rc.requested(), "");
+  const double walking_top = never_done(reach, "reach_getup");
+  EXPECT_GT(walking_top, 1.2) << "a walking character's neck";
+  EXPECT_LT(walking_top, 0.8 * top(raised));
 }
 
 }  // namespace
