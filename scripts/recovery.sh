@@ -2,8 +2,9 @@
 # Seed 004 §6's recovery with the get-ups (docs/interactive.md), from the built mimic (build/):
 #
 #   scripts/recovery.sh curve     the walk under seed 004's cubes, the fraction of the time
-#                                 performing without and with the get-ups: docs/data/recovery.json
-#                                 and docs/figures/recovery.png (about 15 min on one core)
+#                                 performing without and with the get-ups:
+#                                 docs/data/recovery_WALK.json and docs/figures/recovery_WALK.png
+#                                 (about 15 min on one core)
 #   scripts/recovery.sh session   the scripted session: the walk pushed down, got up by a get-up,
 #                                 walking on (docs/videos/recovery_session.mp4 and its events)
 #   scripts/recovery.sh standing  the walk started where a recovery hands it back, the get-up
@@ -13,45 +14,58 @@
 #                                 models/humanoid_walk_iccgan_from_standing, made by its one command
 #                                 into runs/ where it is not there (1.5·10^6 samples, about 45 min
 #                                 at one thread; a run already there is resumed)
-#   scripts/recovery.sh walk      the walk a recovery hands the character back to, made where it is
-#                                 not in runs/: the shipped walk fine-tuned (1.5·10^6 samples, about
-#                                 20 min at two threads) to set off from where the get-ups actually
-#                                 leave a character, the 0.3 s before each hand-back of 40 recorded
-#                                 sessions (the shipped walk pushed down, got up; seeds 1-40:
-#                                 runs/getup_ends/, `mimic play --motion`), and from where the get-up
-#                                 clips end (their last 0.3 s): runs/humanoid_walk_after_getups
+#   scripts/recovery.sh walk      models/humanoid_walk_iccgan_after_getups, the walk a recovery hands
+#                                 the character back to: the shipped walk fine-tuned (1.5·10^6
+#                                 samples, about 20 min at two threads) to set off from where the
+#                                 get-ups actually leave a character, the 0.3 s before each hand-back
+#                                 of 40 recorded sessions (the shipped walk pushed down, got up;
+#                                 seeds 1-40: runs/getup_ends/, `mimic play --motion`), and from
+#                                 where the get-up clips end (their last 0.3 s); trained into
+#                                 runs/humanoid_walk_iccgan_after_getups (resumed where stopped)
+#   scripts/recovery.sh handbacks where the get-ups hand a character back in 30 sessions not trained
+#                                 on (seeds 101-130, recorded as the walk part records its own):
+#                                 the shipped walk, the walk from standing and WALK started there,
+#                                 as many episodes of 10 s as there are hand-backs, each from a
+#                                 random one (docs/data/handbacks_WALK.json: the failure rate)
 #   scripts/recovery.sh           curve and session
 #
 # The get-ups are GETUPS (default: models/humanoid_getup_facedown and models/humanoid_getup_faceup,
 # the zoo's: scripts/zoo.sh makes them); the walk is WALK (default
-# models/humanoid_walk_iccgan_from_standing, the walk that sets off from a get-up's end). A
+# models/humanoid_walk_iccgan_after_getups, the walk that sets off from where they leave it). A
 # skill is named by its directory (a run's RUN/model by its run), so theirs must differ.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
 mimic=build/src/mimic
-walk=${WALK:-models/humanoid_walk_iccgan_from_standing}
+walk=${WALK:-models/humanoid_walk_iccgan_after_getups}
 motions=${MIMIC_DATA:-../shared/data}/deepmimic/motions
 read -r -a getups <<<"${GETUPS:-models/humanoid_getup_facedown models/humanoid_getup_faceup}"
 parts=("$@")
 [[ ${#parts[@]} -gt 0 ]] || parts=(curve session)
-if [[ " ${parts[*]} " == *" curve "* || " ${parts[*]} " == *" session "* || " ${parts[*]} " == *" walk "* ]]; then
+if [[ " ${parts[*]} " =~ \ (curve|session|walk|handbacks)\  ]]; then
   for g in "${getups[@]}"; do
     [[ -f $g/networks.mimic ]] || { echo "recovery.sh: no get-up model in $g (scripts/zoo.sh makes them)" >&2; exit 2; }
   done
-  [[ -f $walk/networks.mimic ]] || { echo "recovery.sh: no walk model in $walk (models/README.md has its command)" >&2; exit 2; }
+fi
+if [[ " ${parts[*]} " =~ \ (curve|session|handbacks)\  && ! -f $walk/networks.mimic ]]; then
+  echo "recovery.sh: no walk model in $walk (scripts/recovery.sh walk makes the default one)" >&2
+  exit 2
 fi
 mkdir -p docs/data docs/figures docs/videos
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
 for part in "${parts[@]}"; do
   case $part in
     curve)
+      # Named by the walk (a run's RUN/model by its run).
+      name=$(basename "$walk")
+      [[ $name == model ]] && name=$(basename "$(dirname "$walk")")
       "$mimic" eval "$walk" --episodes 1 --trials 1 --robustness 0,10,20,30,40 \
-        --recover "$(IFS=,; echo "${getups[*]}")" --robustness-trials 10 --robustness-seconds 20 --json docs/data/recovery.json
-      "$mimic" plot docs/data/recovery.json --y performing -o docs/figures/recovery.png
+        --recover "$(IFS=,; echo "${getups[*]}")" --robustness-trials 10 --robustness-seconds 20 --json "docs/data/recovery_$name.json"
+      "$mimic" plot "docs/data/recovery_$name.json" --y performing -o "docs/figures/recovery_$name.png"
       ;;
     session)
-      script=$(mktemp)
-      trap 'rm -f "$script"' EXIT
+      script=$tmp/$part.txt
       # Walk; three hard pushes put it down; the get-up takes over; the walk takes it back.
       printf '%s\n' "# walk, pushed down, gets up, walks on" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$script"
       "$mimic" play "$walk" --recover "${getups[@]}" --headless --script "$script" --seconds 20 \
@@ -84,7 +98,7 @@ for part in "${parts[@]}"; do
       ;;
     walk)
       ends=runs/getup_ends
-      run=runs/humanoid_walk_after_getups
+      run=runs/humanoid_walk_iccgan_after_getups
       if [[ ! -f $run/config.yaml ]]; then
         mkdir -p "$ends"
         printf '%s\n' "# the walk pushed down" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$ends/pushes.txt"
@@ -104,7 +118,34 @@ for part in "${parts[@]}"; do
       elif [[ ! -f $run/model/networks.mimic ]]; then
         "$mimic" imitate --resume -o "$run"
       fi
+      model=models/humanoid_walk_iccgan_after_getups
+      mkdir -p "$model"
+      cp -r "$run/model/." "$model/"
+      for f in eval.json report.md curves.png video.mp4; do cp "$run/$f" "$model/"; done
+      echo "recovery.sh: $model made"
       ;;
-    *) echo "recovery.sh: unknown part '$part' (curve, session, standing, walk)" >&2; exit 2 ;;
+    handbacks)
+      held=runs/getup_ends_held_out
+      mkdir -p "$held"
+      printf '%s\n' "# the walk pushed down" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$held/pushes.txt"
+      starts=()
+      for seed in $(seq 101 130); do
+        [[ -f $held/session_$seed.json ]] ||
+          "$mimic" play models/humanoid_walk_iccgan --recover "${getups[@]}" --headless --script "$held/pushes.txt" --seconds 20 \
+            --push-force 900 --seed "$seed" --motion "$held/session_$seed.mclip" --json "$held/session_$seed.json" >/dev/null
+        while read -r t; do
+          cut=$held/handback_$((${#starts[@]} + 1)).mclip
+          "$mimic" motion convert "$held/session_$seed.mclip" --start "$(awk -v t="$t" 'BEGIN {print t - 0.4}')" \
+            --end "$(awk -v t="$t" 'BEGIN {print t - 0.1}')" -o "$cut" >/dev/null
+          starts+=("$cut")
+        done < <(sed -n 's/.*"t": \([0-9.]*\), "event": "recovered".*/\1/p' "$held/session_$seed.json")
+      done
+      echo "recovery.sh: ${#starts[@]} hand-backs in 30 sessions"
+      for w in models/humanoid_walk_iccgan models/humanoid_walk_iccgan_from_standing "$walk"; do
+        "$mimic" eval "$w" --episodes "${#starts[@]}" --trials 1 --set "env.start_clips=[$(IFS=,; echo "${starts[*]}")]" \
+          --set env.start_clip_share=1 --json "docs/data/handbacks_$(basename "$w").json"
+      done
+      ;;
+    *) echo "recovery.sh: unknown part '$part' (curve, session, standing, walk, handbacks)" >&2; exit 2 ;;
   esac
 done
