@@ -250,7 +250,6 @@ void run_play(const Args& a) {
                                std::to_string(navigator->config().decision_steps) + " steps"
                          : "");
   const std::string driver = navigator ? navigator->controller()->name() : std::string();
-  // One control step: the controller's decision where one is due, then the skill's step.
   // The character's motion (--motion): its pose at the start and after every control step taken.
   std::unique_ptr<Clip> motion;
   if (!a.motion.empty()) {
@@ -262,6 +261,7 @@ void run_play(const Args& a) {
     motion->fps = 1.0 / session.controller().control_dt();
     motion->frames.push_back(character->world().pose());
   }
+  // One control step: the controller's decision where one is due, then the skill's step.
   auto advance = [&] {
     if (navigator) navigator->drive(session.controller());
     session.step();

@@ -415,6 +415,7 @@ Eigen::Vector3d Controller::root_position() const {
   if (!m || !d || m->nbody < 2) return Eigen::Vector3d::Zero();
   return Eigen::Vector3d(d->xpos[3], d->xpos[4], d->xpos[5]);
 }
+
 const CharacterEnv* ControllerInternals::active_character(const Controller& c) { return character_of(*c.impl_->envs[c.impl_->active]); }
 
 double Controller::highest_joint_height() const {
