@@ -32,11 +32,12 @@
 # The get-ups are GETUPS (default: models/humanoid_getup_facedown and models/humanoid_getup_faceup,
 # the zoo's: scripts/zoo.sh makes them); the walk is WALK (default
 # models/humanoid_walk_iccgan_after_getups, the walk that sets off from where they leave it). A
-# skill is named by its directory (a run's RUN/model by its run), so theirs must differ.
+# skill is named by its directory (a run's RUN/model by its run), so theirs must differ. MIMIC names
+# another mimic binary (default build/src/mimic).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
-mimic=build/src/mimic
+mimic=${MIMIC:-build/src/mimic}
 walk=${WALK:-models/humanoid_walk_iccgan_after_getups}
 motions=${MIMIC_DATA:-../shared/data}/deepmimic/motions
 read -r -a getups <<<"${GETUPS:-models/humanoid_getup_facedown models/humanoid_getup_faceup}"

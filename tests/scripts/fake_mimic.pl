@@ -5,6 +5,8 @@
 # SIGINT makes it log "stopped" and exit 130, as mimic does after saving, even where the signal was
 # ignored when it started. A run whose arguments contain $FAKE_FAIL (where set) logs "failed" and
 # exits 4 at once; one started --from runs/zoo/humanoid_walk/model before that model exists, 3.
+# `play` writes its --motion (empty) and --json: a "recovered" event at each of $FAKE_RECOVERED's
+# times.
 use strict;
 use warnings;
 use File::Path qw(make_path);
@@ -24,8 +26,24 @@ sub touch {
   close($f);
 }
 
+# The value after option $_[0] in the arguments, or undef.
+sub option {
+  for my $i (0 .. $#args - 1) { return $args[$i + 1] if $args[$i] eq $_[0]; }
+  return undef;
+}
+
 note('start');
 $SIG{INT} = sub { note('stopped'); exit 130; };
+if ($args[0] eq 'play') {  # a session: its motion, and its events with $FAKE_RECOVERED's hand-backs
+  touch(option('--motion')) if defined option('--motion');
+  if (defined option('--json')) {
+    open(my $f, '>', option('--json')) or die "fake_mimic: " . option('--json') . ": $!";
+    my @events = map { qq(  {"t": $_, "event": "recovered", "skill": "walk"}) } split(' ', $ENV{FAKE_RECOVERED} // '');
+    print $f "[\n" . join(",\n", @events) . "\n]\n";
+    close($f);
+  }
+  exit 0;
+}
 if ($args[0] eq 'demo') {
   make_path($out);
   touch("$out/jumping_jack.mclip");
@@ -45,4 +63,5 @@ select(undef, undef, undef, $seconds);  # a sleep (SIGINT ends it)
 my $model = $args[0] eq 'export' ? $out : "$out/model";
 make_path($model);
 touch("$model/networks.mimic");
+if ($args[0] eq 'imitate') { touch("$out/$_") for ('eval.json', 'report.md', 'curves.png', 'video.mp4'); }
 note('done');
