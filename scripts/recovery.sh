@@ -52,15 +52,20 @@ if [[ " ${parts[*]} " =~ \ (curve|session|handbacks)\  && ! -f $walk/networks.mi
   echo "recovery.sh: no walk model in $walk (scripts/recovery.sh walk makes the default one)" >&2
   exit 2
 fi
+# A skill's name: its directory's, a run's RUN/model its run's (as mimic names skills).
+skill_name() {
+  local name
+  name=$(basename "$1")
+  [[ $name == model ]] && name=$(basename "$(dirname "$1")")
+  echo "$name"
+}
 mkdir -p docs/data docs/figures docs/videos
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for part in "${parts[@]}"; do
   case $part in
     curve)
-      # Named by the walk (a run's RUN/model by its run).
-      name=$(basename "$walk")
-      [[ $name == model ]] && name=$(basename "$(dirname "$walk")")
+      name=$(skill_name "$walk")
       "$mimic" eval "$walk" --episodes 1 --trials 1 --robustness 0,10,20,30,40 \
         --recover "$(IFS=,; echo "${getups[*]}")" --robustness-trials 10 --robustness-seconds 20 --json "docs/data/recovery_$name.json"
       "$mimic" plot "docs/data/recovery_$name.json" --y performing -o "docs/figures/recovery_$name.png"
@@ -144,7 +149,7 @@ for part in "${parts[@]}"; do
       echo "recovery.sh: ${#starts[@]} hand-backs in 30 sessions"
       for w in models/humanoid_walk_iccgan models/humanoid_walk_iccgan_from_standing "$walk"; do
         "$mimic" eval "$w" --episodes "${#starts[@]}" --trials 1 --set "env.start_clips=[$(IFS=,; echo "${starts[*]}")]" \
-          --set env.start_clip_share=1 --json "docs/data/handbacks_$(basename "$w").json"
+          --set env.start_clip_share=1 --json "docs/data/handbacks_$(skill_name "$w").json"
       done
       ;;
     *) echo "recovery.sh: unknown part '$part' (curve, session, standing, walk, handbacks)" >&2; exit 2 ;;
