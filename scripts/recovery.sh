@@ -59,6 +59,21 @@ skill_name() {
   [[ $name == model ]] && name=$(basename "$(dirname "$1")")
   echo "$name"
 }
+# Sessions of the shipped walk pushed down and got up, seeds FIRST to LAST, recorded into DIR where
+# not there (their motion and events: session_SEED.mclip and .json); prints each hand-back as
+# "DIR/session_SEED.mclip TIME" (the seconds of its "recovered" event).
+record_handbacks() {
+  local dir=$1 seed t
+  mkdir -p "$dir"
+  printf '%s\n' "# the walk pushed down" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$dir/pushes.txt"
+  for seed in $(seq "$2" "$3"); do
+    [[ -f $dir/session_$seed.json ]] ||
+      "$mimic" play models/humanoid_walk_iccgan --recover "${getups[@]}" --headless --script "$dir/pushes.txt" --seconds 20 \
+        --push-force 900 --seed "$seed" --motion "$dir/session_$seed.mclip" --json "$dir/session_$seed.json" >/dev/null
+    sed -n 's/.*"t": \([0-9.]*\), "event": "recovered".*/\1/p' "$dir/session_$seed.json" |
+      while read -r t; do echo "$dir/session_$seed.mclip $t"; done
+  done
+}
 mkdir -p docs/data docs/figures docs/videos
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -106,18 +121,11 @@ for part in "${parts[@]}"; do
       ends=runs/getup_ends
       run=runs/humanoid_walk_iccgan_after_getups
       if [[ ! -f $run/config.yaml ]]; then
-        mkdir -p "$ends"
-        printf '%s\n' "# the walk pushed down" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$ends/pushes.txt"
         starts=("$motions/humanoid3d_getup_faceup.txt@-0.3" "$motions/humanoid3d_getup_facedown.txt@-0.3")
-        for seed in $(seq 40); do
-          [[ -f $ends/session_$seed.json ]] ||
-            "$mimic" play models/humanoid_walk_iccgan --recover "${getups[@]}" --headless --script "$ends/pushes.txt" --seconds 20 \
-              --push-force 900 --seed "$seed" --motion "$ends/session_$seed.mclip" --json "$ends/session_$seed.json" >/dev/null
-          # The 0.3 s that end 0.1 s before each hand-back (the get-up's, before the walk acts).
-          while read -r t; do
-            starts+=("$ends/session_$seed.mclip@$(awk -v t="$t" 'BEGIN {printf "%.4f:%.4f", t - 0.4, t - 0.1}')")
-          done < <(sed -n 's/.*"t": \([0-9.]*\), "event": "recovered".*/\1/p' "$ends/session_$seed.json")
-        done
+        # The 0.3 s that end 0.1 s before each hand-back (the get-up's, before the walk acts).
+        while read -r clip t; do
+          starts+=("$clip@$(awk -v t="$t" 'BEGIN {printf "%.4f:%.4f", t - 0.4, t - 0.1}')")
+        done < <(record_handbacks "$ends" 1 40)
         echo "recovery.sh: $((${#starts[@]} - 2)) hand-backs in 40 sessions, and the get-up clips' ends"
         "$mimic" imitate "$motions/humanoid3d_walk.txt" --from models/humanoid_walk_iccgan --samples 1500000 \
           --start-clips "${starts[@]}" -o "$run"
@@ -132,20 +140,13 @@ for part in "${parts[@]}"; do
       ;;
     handbacks)
       held=runs/getup_ends_held_out
-      mkdir -p "$held"
-      printf '%s\n' "# the walk pushed down" "2.0 p" "2.2 p" "2.4 p" "2.6 p" >"$held/pushes.txt"
       starts=()
-      for seed in $(seq 101 130); do
-        [[ -f $held/session_$seed.json ]] ||
-          "$mimic" play models/humanoid_walk_iccgan --recover "${getups[@]}" --headless --script "$held/pushes.txt" --seconds 20 \
-            --push-force 900 --seed "$seed" --motion "$held/session_$seed.mclip" --json "$held/session_$seed.json" >/dev/null
-        while read -r t; do
-          cut=$held/handback_$((${#starts[@]} + 1)).mclip
-          "$mimic" motion convert "$held/session_$seed.mclip" --start "$(awk -v t="$t" 'BEGIN {print t - 0.4}')" \
-            --end "$(awk -v t="$t" 'BEGIN {print t - 0.1}')" -o "$cut" >/dev/null
-          starts+=("$cut")
-        done < <(sed -n 's/.*"t": \([0-9.]*\), "event": "recovered".*/\1/p' "$held/session_$seed.json")
-      done
+      while read -r clip t; do
+        cut=$held/handback_$((${#starts[@]} + 1)).mclip
+        "$mimic" motion convert "$clip" --start "$(awk -v t="$t" 'BEGIN {print t - 0.4}')" \
+          --end "$(awk -v t="$t" 'BEGIN {print t - 0.1}')" -o "$cut" >/dev/null
+        starts+=("$cut")
+      done < <(record_handbacks "$held" 101 130)
       echo "recovery.sh: ${#starts[@]} hand-backs in 30 sessions"
       for w in models/humanoid_walk_iccgan models/humanoid_walk_iccgan_from_standing "$walk"; do
         "$mimic" eval "$w" --episodes "${#starts[@]}" --trials 1 --set "env.start_clips=[$(IFS=,; echo "${starts[*]}")]" \
