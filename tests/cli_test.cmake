@@ -532,19 +532,22 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_fails("excludes" imitate --resume --start-clips ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run)
   # Steering (--task heading) from the model above: the goal mixed in, the input widened, the
   # response to a commanded turn measured. (With another skill's clip to start a share of the
-  # episodes from, copied into the run and its model; the model acts from its own starts.)
+  # episodes from, copied into the run and its model; the model acts from its own starts. The
+  # model's environment kept: its max_seconds of 2, which the recipe leaves unset.)
   run_ok(imitate ${OUT}/jj_mirror.mclip --task heading --from ${OUT}/imitated_model -o ${OUT}/imitate_steer --samples 1 --trials 1
-         --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2
+         --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2
          --start-clips ${DATA}/deepmimic/motions/humanoid3d_walk.txt@-0.5 ${DATA}/deepmimic/motions/humanoid3d_walk.txt@0:0.3)
   string(FIND "${LAST_OUT}" "was trained in another environment" other_env)
   if(NOT other_env EQUAL -1)
     message(FATAL_ERROR "imitate --from warned of another environment where only the task's keys differ:\n${LAST_OUT}")
   endif()
-  # From a model trained with other environment keys: the fine-tune says which, before it trains.
+  expect_in("${LAST_OUT}" "the fine-tune acts in the environment ${OUT}/imitated_model was trained in")
+  # A key set otherwise than the model's (by --set): the fine-tune says which, before it trains.
   run_ok(imitate ${OUT}/jj_mirror.mclip --from ${OUT}/imitated_model -o ${OUT}/imitate_other_env --samples 1 --trials 1
          --video-seconds 0 --threads 1 --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=3)
-  expect_in("${LAST_OUT}" "was trained in another environment than the recipe's (max_seconds: 2 in the model, 3 in the run)")
+  expect_in("${LAST_OUT}" "was trained in another environment than this run's (max_seconds: 2 in the model, 3 in the run)")
   file(READ ${OUT}/imitate_steer/config.yaml imitate_steer_config)
+  expect_in("${imitate_steer_config}" "max_seconds: 2")
   # Two stretches of one clip: two files, the second's name made distinct.
   expect_in("${imitate_steer_config}" "start_clips: [start_clips/humanoid3d_walk.mclip, start_clips/humanoid3d_walk_2.mclip]")
   if(NOT EXISTS ${OUT}/imitate_steer/model/start_clips/humanoid3d_walk.mclip)

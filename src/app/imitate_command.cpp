@@ -183,15 +183,45 @@ std::vector<std::string> task_settings(const ImitateArgs& a) {
   return s;
 }
 
-// The environment keys a --from model was trained with that the new run sets otherwise (those
-// imitate fills in for every run aside: the clips, the character, the task's; and the clips' own
-// contacts, which follow the clip): what a fine-tune changes under the model, as "pd_limit: total
-// in the model, unset in the run". Empty where they agree or the model's config cannot be read
-// (training then says why).
-std::string env_keys_changed(const fs::path& model, const std::string& run_text) {
+// The fine-tune of a --from model acts in the environment the model was trained in: "env.KEY=VALUE"
+// for each key the model's config sets (but those imitate fills in for every run: `filled` below),
+// applied before the user's own --set, which wins. A recipe's PD limit, drift limit or start
+// momentum other than the model's changes what its actions do (a run trained with
+// `pd_limit: total` fine-tuned without it fell in 9 of 20 trials). Empty where the model's
+// config cannot be read (training then says why).
+const std::vector<std::string>& imitate_filled_env_keys() {
   static const std::vector<std::string> filled{"name",      "character",           "clip",          "start_clips",
                                                "start_clip_share", "fallen_starts", "goal",        "goal_turn",
                                                "alive_bonus",      "control_weight", "allow_clip_contacts"};
+  return filled;
+}
+
+std::vector<std::string> model_env_settings(const fs::path& model, const std::string& recipe_text) {
+  YAML::Node theirs, recipe;
+  try {
+    theirs = YAML::Load(read_text_file(model / "config.yaml"))["env"];
+    recipe = YAML::Load(recipe_text)["env"];
+  } catch (const std::exception&) {
+    return {};
+  }
+  if (!theirs.IsMap()) return {};
+  const std::vector<std::string>& filled = imitate_filled_env_keys();
+  std::vector<std::string> out;
+  for (const auto& kv : theirs) {
+    const std::string key = kv.first.Scalar(), value = flow_yaml(kv.second);
+    if (std::find(filled.begin(), filled.end(), key) != filled.end()) continue;
+    if (recipe.IsMap() && recipe[key] && flow_yaml(recipe[key]) == value) continue;  // the recipe's already
+    out.push_back("env." + key + "=" + value);
+  }
+  return out;
+}
+
+// The environment keys a --from model was trained with that the new run still sets otherwise after
+// model_env_settings (those the user --set, and those the model leaves unset), aside from those
+// imitate fills in for every run: what a fine-tune changes under the model, as "max_seconds: 2 in
+// the model, 3 in the run". Empty where they agree or the model's config cannot be read.
+std::string env_keys_changed(const fs::path& model, const std::string& run_text) {
+  const std::vector<std::string>& filled = imitate_filled_env_keys();
   YAML::Node theirs, ours;
   try {
     theirs = YAML::Load(read_text_file(model / "config.yaml"))["env"];
@@ -272,6 +302,8 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
   // it a character pushed over, in poses its clips never show (docs/imitate.md).
   if (a.method != "tracking" && std::any_of(clips.begin(), clips.end(), [](const Clip& c) { return begins_lying(c); }))
     settings.push_back(fmt::format("env.fallen_starts={}", kGetUpFallenStarts));
+  const std::vector<std::string> kept = a.from.empty() ? std::vector<std::string>{} : model_env_settings(a.from, recipe.text);
+  settings.insert(settings.end(), kept.begin(), kept.end());
   settings.insert(settings.end(), own.begin(), own.end());  // the task's, then the user's last: they win
 
   // Everything is known to fit: write the run (and take it away again if that fails: it was new).
@@ -291,10 +323,12 @@ void start_run(const ImitateArgs& a, const Recipe& recipe) {
     const fs::path config = a.out / "config.yaml";
     write_file_atomic(config, text);
     spdlog::info("{}: {} clip{} on {}, recipe {}", a.out.string(), clips.size(), clips.size() == 1 ? "" : "s", character.string(), a.method);
+    if (!kept.empty())
+      spdlog::info("{}: the fine-tune acts in the environment {} was trained in (its env keys kept; --set env.KEY=VALUE sets one otherwise)",
+                   a.out.string(), a.from.string());
     if (!a.from.empty())
       if (const std::string changed = env_keys_changed(a.from, text); !changed.empty())
-        spdlog::warn("{} was trained in another environment than the recipe's ({}): the fine-tune trains in the run's; "
-                     "--set env.KEY=VALUE keeps the model's",
+        spdlog::warn("{} was trained in another environment than this run's ({}): the fine-tune trains in the run's",
                      a.from.string(), changed);
     if (a.method == "tracking") return;
     const TrainConfig cfg = parse_train_config(text, config.string());
