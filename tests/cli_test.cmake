@@ -29,6 +29,13 @@ if(EXISTS ${SRC}/../shared/data/deepmimic/motions/humanoid3d_walk.txt AND NOT DE
   foreach(skill humanoid_run_iccgan_straight_loop humanoid_kick_iccgan_total humanoid_punch_iccgan_annealed)
     expect_in("${LAST_OUT}" "pretrained  ${skill}: imitation error ")
   endforeach()
+  # The finale: the kick takes over from the walk at the script's second request, the character
+  # is got up after the pushes and walks on; the session's events are written.
+  string(REGEX MATCH "finale      [^\n]*" finale_line "${LAST_OUT}")
+  expect_in("${finale_line}" "switch kick_iccgan_from_skills 4.8 s, ")
+  expect_in("${finale_line}" ", recovered walk_iccgan_after_getups ")
+  file(READ ${OUT}/demo/finale.json finale_events)
+  expect_in("${finale_events}" "{\"t\": 2, \"event\": \"request\", \"skill\": \"humanoid_punch_iccgan_annealed\"}")
 else()
   message(STATUS "../shared/data absent (or MIMIC_DATA set): the pretrained walk's check is skipped")
 endif()

@@ -2,10 +2,13 @@
 // a tracking policy trained for about four minutes on the built-in squat, evaluated (imitation
 // error before and after) and filmed with the clip as a ghost; with ../shared, the project's best
 // skills (the ICCGAN walk, run, kick and punch of seed 004's Table 2) evaluated and filmed the
-// same way.
+// same way; then the finale, one scripted play session of those skills with recovery (the walk
+// takes over into a punch, a kick, a punch, the walk again and the run; the character is pushed
+// down, gets up and walks on), filmed with its events.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "core/file_io.hpp"
@@ -17,6 +20,7 @@
 #include "core/build_paths.hpp"
 #include "render/clip_video.hpp"
 #include "core/error.hpp"
+#include "app/play_run.hpp"
 #include "app/policy_video.hpp"
 #include "app/run_skill.hpp"
 #include "control/skill_impl.hpp"
@@ -30,6 +34,12 @@ namespace {
 
 // The demo's training: about four minutes on two cores.
 constexpr int kDemoIterations = 300;
+
+// The finale's switch rule: a requested skill takes over once its discriminators score the
+// character's motion at least this (docs/interactive.md, the transition test).
+constexpr double kFinaleTau = -0.2;
+// Long enough for the get-up and the walk on after the script's last key.
+constexpr double kFinaleSeconds = 30.0;
 
 // Summary, .mclip, .svg picture and (unless disabled) an .mp4 of the clip on `ch`.
 void show(const Clip& clip, const CharacterModel& ch, const std::filesystem::path& dir, double seconds, bool video,
@@ -124,6 +134,72 @@ void learn_builtin(const Clip& learnt, const std::filesystem::path& dir, int ite
   if (video) film(*trained, dir / (name + "_policy.mp4"), 6.0);
 }
 
+// The finale's skills, in the order its script's keys 1-5 request them, and the get-ups of its
+// recovery (models/README.md; the session's script is configs/play/finale.txt).
+const std::vector<std::string> kFinaleSkills = {"humanoid_walk_iccgan_from_skills", "humanoid_run_iccgan_from_skills",
+                                                "humanoid_kick_iccgan_from_skills", "humanoid_punch_iccgan_annealed",
+                                                "humanoid_walk_iccgan_after_getups"};
+const std::vector<std::string> kFinaleGetUps = {"humanoid_getup_facedown", "humanoid_getup_faceup"};
+
+// The finale's session: the arguments of `mimic play` that make it (where every model is there).
+std::optional<PlayArgs> finale_args() {
+  const std::filesystem::path source(kSourceDir);
+  PlayArgs a;
+  for (const auto* list : {&kFinaleSkills, &kFinaleGetUps})
+    for (const std::string& name : *list) {
+      const std::filesystem::path model = source / "models" / name;
+      if (!std::filesystem::exists(model / "networks.mimic")) return std::nullopt;
+      (list == &kFinaleSkills ? a.models : a.recover).push_back(model);
+    }
+  a.script = source / "configs/play/finale.txt";
+  a.rule = "score", a.tau = kFinaleTau, a.time_limit = 3.0;
+  a.push_force = 900;
+  a.headless = true, a.seconds = kFinaleSeconds;
+  a.seed = 1;
+  return a;
+}
+
+// The same session as a command line, for the log and the docs (paths relative to the source directory).
+std::string play_command_line(const PlayArgs& a) {
+  std::string line = "mimic play";
+  const std::filesystem::path source(kSourceDir);
+  auto rel = [&](const std::filesystem::path& p) { return std::filesystem::relative(p, source).string(); };
+  for (const auto& m : a.models) line += " " + rel(m);
+  line += " --recover";
+  for (const auto& m : a.recover) line += " " + rel(m);
+  return line + fmt::format(" --script {} --tau {} --time-limit {} --push-force {} --seed {} --seconds {} (in the source directory)", rel(a.script), a.tau,
+                            a.time_limit, a.push_force, a.seed, a.seconds);
+}
+
+// The finale, into dir/finale.mp4 (with `video`) and dir/finale.json: its events in one line.
+void finale(const std::filesystem::path& dir, bool video, std::string& summary) {
+  std::optional<PlayArgs> a = finale_args();
+  if (!a) {
+    spdlog::info("the finale's models are not all in models/ (models/README.md): no finale");
+    return;
+  }
+  if (video) a->output = dir / "finale.mp4";
+  a->json = dir / "finale.json";
+  spdlog::info("the finale: {}", play_command_line(*a));
+  std::vector<PlayEvent> events;
+  try {
+    events = run_play(*a);
+  } catch (const Error& e) {  // the rest of the demo is kept
+    spdlog::warn("no finale: {}", e.what());
+    return;
+  }
+  std::string story;
+  for (const PlayEvent& e : events) {
+    if (e.event == "request" || e.event == "push" || e.event == "cube") continue;
+    std::string skill = e.skill;
+    if (skill.rfind("humanoid_", 0) == 0) skill = skill.substr(9);
+    story += fmt::format("{}{} {} {:.1f} s", story.empty() ? "" : ", ", e.event, skill, e.t);
+  }
+  const std::string line = "finale      " + (story.empty() ? std::string("nothing happened") : story) + " (" + a->json.string() + ")";
+  fmt::print("{}\n", line);
+  summary += line + "\n";
+}
+
 }  // namespace
 
 void add_demo_command(CLI::App& app) {
@@ -176,6 +252,8 @@ void add_demo_command(CLI::App& app) {
         summary += line + "\n";
         if (*video) film(*policy, *out / (model.filename().string() + "_policy.mp4"), 8.0);
       }
+      // 5. The finale: those skills in one scripted session, with recovery.
+      finale(*out, *video, summary);
     } else {
       spdlog::info("shared data not found (../shared/data or $MIMIC_DATA): showing the built-in clip only");
     }
