@@ -183,12 +183,8 @@ std::vector<std::string> task_settings(const ImitateArgs& a) {
   return s;
 }
 
-// The fine-tune of a --from model acts in the environment the model was trained in: "env.KEY=VALUE"
-// for each key the model's config sets (but those imitate fills in for every run: `filled` below),
-// applied before the user's own --set, which wins. A recipe's PD limit, drift limit or start
-// momentum other than the model's changes what its actions do (a run trained with
-// `pd_limit: total` fine-tuned without it fell in 9 of 20 trials). Empty where the model's
-// config cannot be read (training then says why).
+// The environment keys imitate fills in for every run (the clips, the character, the task's, and the
+// clips' own contacts, which follow the clip), whatever a --from model was trained with.
 const std::vector<std::string>& imitate_filled_env_keys() {
   static const std::vector<std::string> filled{"name",      "character",           "clip",          "start_clips",
                                                "start_clip_share", "fallen_starts", "goal",        "goal_turn",
@@ -196,6 +192,12 @@ const std::vector<std::string>& imitate_filled_env_keys() {
   return filled;
 }
 
+// The fine-tune of a --from model acts in the environment the model was trained in: "env.KEY=VALUE"
+// for each key the model's config sets otherwise than the recipe (but the filled ones), applied
+// before the user's own --set, which wins. A recipe's PD limit, drift limit or start momentum other
+// than the model's changes what its actions do (a run trained with `pd_limit: total` fine-tuned
+// without it fell in 9 of 20 trials). Empty where the model's config cannot be read (training
+// then says why).
 std::vector<std::string> model_env_settings(const fs::path& model, const std::string& recipe_text) {
   YAML::Node theirs, recipe;
   try {
