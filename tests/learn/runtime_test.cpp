@@ -62,7 +62,7 @@ std::vector<std::string> committed_models() {
   // The sanitizer build checks memory, not numerics (the release build compares every model): one
   // model of each kind of environment and network, as loading a trainer takes seconds under ASan.
   const std::vector<std::string> kinds = {"dog_trot_tracking", "humanoid_walk_iccgan", "humanoid_walk_gail", "humanoid_walk_tracking",
-                                          "humanoid_walk_run_context_iccgan", "reacher_ppo", "walker_ppo"};
+                                          "humanoid_walk_run_distilled_tuned", "reacher_ppo", "walker_ppo"};
   std::erase_if(out, [&](const std::string& m) { return std::find(kinds.begin(), kinds.end(), m) == kinds.end(); });
 #endif
   return out;
