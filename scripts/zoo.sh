@@ -19,8 +19,9 @@
 # The CMU walk is another performer's (subject 131's stylised walk, retargeted by its built-in
 # map): a clip the recipe was not tuned on, whose error is set beside the DeepMimic walk's.
 # Ctrl-C saves the running runs; the same command goes on from them. Started in the background
-# (nohup scripts/zoo.sh -j 2 ... &), where Ctrl-C's signal is ignored, `kill -TERM` its pid does the
-# same. MIMIC names another mimic binary (default build/src/mimic, built first).
+# (nohup scripts/zoo.sh ... &), where Ctrl-C's signal is ignored, `kill -TERM` its pid does the
+# same, one skill at a time or several. MIMIC names another mimic binary (default build/src/mimic,
+# built first).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${MIMIC_DATA:-../shared/data}
@@ -114,25 +115,30 @@ make_one() {
   echo "zoo.sh: models/$name from: mimic ${command[$name]} -o $run"
 }
 
-if ((jobs == 1)); then
+# A skill's own process (started by the scheduler below): its run, then its model.
+if [[ -n ${ZOO_SKILL:-} ]]; then
   for name in "${names[@]}"; do make_one "$name"; done
   exit 0
 fi
 
-# Several at a time. Each skill runs as this script for that skill alone, in a session of its own,
-# so that Ctrl-C reaches this scheduler only, which asks each running skill once to save and stop.
+# The scheduler, one skill at a time or -j. Each skill runs as this script for that skill alone
+# (ZOO_SKILL), in a session of its own, so that Ctrl-C or a TERM reaches this scheduler only, which
+# asks each running skill once to save and stop. (A run in this script's own foreground would not
+# hear a TERM sent to the script, and would go on after it.) Several at a time: one thread each,
+# each skill's output in runs/zoo/<name>.log; one at a time: the machine's threads, the output here.
 declare -A name_of=()  # pid -> name, while it runs
 declare -A result=()   # name -> exit status, once it ended
 pending=("${names[@]}")
-stopping=0
+stopping=0  # 128 + the signal that stopped the zoo, once one came
 failed=0
-# shellcheck disable=SC2317  # (called by the trap)
+# shellcheck disable=SC2317  # (called by the traps)
 stop_all() {
-  stopping=1
+  stopping=$1
   local p
   for p in "${!name_of[@]}"; do kill -INT -- "-$p" 2>/dev/null || true; done
 }
-trap stop_all INT TERM
+trap 'stop_all 130' INT
+trap 'stop_all 143' TERM
 while :; do
   if ((stopping == 0)); then
     waiting=()
@@ -148,9 +154,15 @@ while :; do
       elif [[ $dep_state == waiting || ${#name_of[@]} -ge $jobs ]]; then
         waiting+=("$name")
       else
-        ZOO_PREPARED=1 ZOO_THREADS=1 setsid "$0" "$name" >>"runs/zoo/$name.log" 2>&1 </dev/null &
-        name_of[$!]=$name
-        echo "zoo.sh: $name started (pid $!; its output: runs/zoo/$name.log)"
+        if ((jobs == 1)); then
+          ZOO_PREPARED=1 ZOO_SKILL=1 setsid "$0" "$name" </dev/null &
+          name_of[$!]=$name
+          echo "zoo.sh: $name started (pid $!)"
+        else
+          ZOO_PREPARED=1 ZOO_SKILL=1 ZOO_THREADS=1 setsid "$0" "$name" >>"runs/zoo/$name.log" 2>&1 </dev/null &
+          name_of[$!]=$name
+          echo "zoo.sh: $name started (pid $!; its output: runs/zoo/$name.log)"
+        fi
       fi
     done
     pending=("${waiting[@]}")
@@ -167,9 +179,11 @@ while :; do
   elif ((stopping)); then
     echo "zoo.sh: $name stopped and saved; the same command goes on from it"
   else
-    echo "zoo.sh: $name failed (exit $status): see runs/zoo/$name.log"
+    where="runs/zoo/$name.log"
+    ((jobs > 1)) || where="its output above"
+    echo "zoo.sh: $name failed (exit $status): see $where"
     failed=1
   fi
 done
-((stopping == 0)) || exit 130
+((stopping == 0)) || exit "$stopping"
 exit "$failed"

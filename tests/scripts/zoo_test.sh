@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/zoo.sh's scheduling, with a stand-in for mimic (fake_mimic.pl): the order, the skills that
 # start from the walk waiting for it, at most -j skills at a time at one thread each, a failure
-# skipping what starts from it, Ctrl-C saving every running skill, and the bad arguments refused.
+# skipping what starts from it, Ctrl-C (or a TERM, one skill at a time) saving every running skill,
+# and the bad arguments refused.
 # Usage: zoo_test.sh SOURCE_DIR WORK_DIR
 set -euo pipefail
 src=$1
@@ -68,7 +69,23 @@ wait "$scheduler" || status=$?
 [[ $(grep -c "^stopped runs/zoo/humanoid_" calls) == 2 ]] || fail "not both skills stopped once"
 grep -q "humanoid_kick stopped and saved; the same command goes on from it" out || fail "no stop line: $(cat out)"
 
-# 5. Bad arguments, refused before anything runs.
+# 5. One at a time, started in the background: a TERM to the zoo (as `kill` sends it) stops the
+# running skill once, saved, and starts nothing after it; the zoo exits 143.
+rm -rf runs/zoo/humanoid_kick runs/zoo/humanoid_getup_facedown
+rm -f calls
+FAKE_SECONDS=30 scripts/zoo.sh humanoid_kick humanoid_getup_facedown >out 2>&1 &
+scheduler=$!
+for _ in $(seq 100); do grep -q "^start runs/zoo/humanoid_kick" calls 2>/dev/null && break; sleep 0.1; done
+kill -TERM "$scheduler"
+status=0
+wait "$scheduler" || status=$?
+[[ $status == 143 ]] || fail "stopped by TERM, the zoo exited $status, not 143: $(cat out)"
+[[ $(grep -c "^stopped runs/zoo/humanoid_kick" calls) == 1 ]] || fail "the kick was not stopped once"
+! grep -q "runs/zoo/humanoid_getup_facedown" calls || fail "the next skill was started after the stop"
+grep -q "humanoid_kick stopped and saved; the same command goes on from it" out || fail "no stop line: $(cat out)"
+! pgrep -f "fake_mimic.pl imitate.*runs/zoo/humanoid_kick" >/dev/null || fail "the kick's run goes on after the zoo stopped"
+
+# 6. Bad arguments, refused before anything runs.
 rm -rf runs/zoo/humanoid_walk
 rm -f calls
 expect_refused() {
