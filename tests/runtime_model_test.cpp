@@ -219,6 +219,7 @@ TEST(RuntimeModel, TheCommittedWalkerLoadsAndWalksForward) {
   EXPECT_EQ(skill->action_size(), 6);
   EXPECT_EQ(skill->policy_parameters(), (17 + 1) * 64 + (64 + 1) * 64 + (64 + 1) * 6 + 6);
   Controller c({skill}, 3);
+  EXPECT_DOUBLE_EQ(c.control_dt(), 0.008) << "known before the first step (a window's or a video's frame rate)";
   const double x0 = c.root_position().x();
   for (int i = 0; i < 200; ++i)
     if (c.step().episode_over) break;

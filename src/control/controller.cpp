@@ -203,7 +203,7 @@ Controller::Controller(std::vector<std::shared_ptr<const Skill>> skills, std::ui
     impl_->goal_offsets.push_back(goal);
   }
   const CharacterEnv* character = character_of(*impl_->envs.front());
-  impl_->dt = character ? 1.0 / character->world().config().control_hz : 0.0;
+  impl_->dt = character ? 1.0 / character->world().config().control_hz : impl_->envs.front()->control_dt();
   reset();
 }
 

@@ -57,6 +57,8 @@ class Env {
   // The MuJoCo model and state behind the environment, for rendering; null when there is none.
   virtual const mjModel_* physics_model() const { return nullptr; }
   virtual mjData_* physics_data() const { return nullptr; }
+  // Simulated seconds per step(); 0 where the environment does not say (before it has stepped).
+  virtual double control_dt() const { return 0.0; }
 };
 
 }  // namespace mimic

@@ -31,7 +31,7 @@ class MjcfEnv : public Env {
   const mjData_* data() const { return d_; }
   int frame_skip() const { return frame_skip_; }
   double physics_dt() const;
-  double control_dt() const { return physics_dt() * frame_skip_; }
+  double control_dt() const override { return physics_dt() * frame_skip_; }
   double time() const;
 
   // Generalised state. set_state checks sizes and recomputes positions (mj_forward).

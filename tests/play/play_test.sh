@@ -42,6 +42,12 @@ grep -q "frames      37 at 30.000 Hz = 1.200 s" "$out/motion.txt" || { cat "$out
 travel=$(awk '/^travel/ {print $2}' "$out/motion.txt")
 awk -v t="$travel" 'BEGIN {exit !(t > 1.0)}' || fail "the motion travels $travel m in 1.2 s of walking and running (more than 1 m expected)"
 
+# A model whose environment has no character (the planar walker): no cubes to set up for it, and
+# the video runs at its own control rate from the first frame (125 Hz: 0.2 s is 25 frames).
+"$mimic" play "$src/models/walker_ppo" --headless --seconds 0.2 --width 320 --height 180 -o "$out/walker.mp4" > "$out/walker.log" 2>&1 ||
+  { cat "$out/walker.log"; fail "mimic play of the planar walker"; }
+grep -q "wrote $out/walker.mp4 (25 frames)" "$out/walker.log" || { cat "$out/walker.log"; fail "0.2 s of the walker at 125 Hz is 25 frames"; }
+
 # Skills in runs' model directories (what mimic imitate writes: RUN/model) are named by their runs.
 mkdir -p "$out/my_walk" "$out/my_run"
 ln -s "$walk" "$out/my_walk/model" && ln -s "$run" "$out/my_run/model"
