@@ -151,6 +151,25 @@ TEST(Projectile, FliesStraightAtTheSetSpeedFromTheSetDistanceAndHitsTheChest) {
   EXPECT_FALSE(launcher.flying(k));
 }
 
+TEST(Projectile, ABodyWithoutAChestIsAimedAtItsRootAndAMissingNamedLinkIsAnError) {
+  Skeleton sk = builtin_humanoid();
+  sk.joints[static_cast<std::size_t>(sk.find("chest"))].name = "torso";
+  const CharacterModel ch = CharacterModel::from_skeleton(sk, "no_chest");
+  ProjectileSpec spec;
+  spec.enabled = true;
+  MjcfOptions opts;
+  ProjectileLauncher::add_to(opts, spec, 30.0);
+  World w(ch, SimConfig{}, opts);
+  EXPECT_EQ(ProjectileLauncher(w, spec).spec().target, "root");
+  spec.target = "tail";
+  try {
+    ProjectileLauncher launcher(w, spec);
+    ADD_FAILURE() << "a link the character lacks was aimed at";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("character 'no_chest' has no link 'tail' with a geom to aim at"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Projectile, AMissFallsAndIsParkedAfterItsLinger) {
   ProjectileSpec spec;
   spec.enabled = true;

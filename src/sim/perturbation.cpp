@@ -98,8 +98,12 @@ ProjectileLauncher::ProjectileLauncher(const World& world, const ProjectileSpec&
     cubes_.push_back(c);
   }
   if (cubes_.empty()) throw Error("projectiles: the model has no projectile pool (build it with ProjectileLauncher::add_to)");
+  const Skeleton& skeleton = world.character().skeleton;
+  // The default target on a body without a chest (DeepMimic's dog): its root link.
+  if (spec_.target == ProjectileSpec{}.target && skeleton.find(spec_.target) < 0 && !skeleton.joints.empty())
+    spec_.target = skeleton.joints.front().name;
   target_body_ = mj_name2id(m, mjOBJ_BODY, spec_.target.c_str());
-  if (target_body_ < 0 || world.character().skeleton.find(spec_.target) < 0 || m->body_geomnum[target_body_] < 1)
+  if (target_body_ < 0 || skeleton.find(spec_.target) < 0 || m->body_geomnum[target_body_] < 1)
     throw Error("projectiles: character '" + world.character().name + "' has no link '" + spec_.target + "' with a geom to aim at");
   target_geom_ = m->body_geomadr[target_body_];
   character_body_.assign(static_cast<std::size_t>(m->nbody), 0);

@@ -42,7 +42,7 @@ struct ProjectileSpec {
   double speed = 0.2;             // launch speed (m/s), seed 004
   double distance = 0.5;          // launch point to aim point (m, >= size); seed 004 does not say
   int every = 1;                  // launch every k-th control step; seed 004: every frame. 0: only on demand (launch())
-  std::string target = "chest";   // the torso link aimed at
+  std::string target = "chest";   // the torso link aimed at (this default: the root link of a body without a chest)
   double min_elevation_deg = -15.0, max_elevation_deg = 45.0;  // launch directions (azimuth uniform)
   double linger = 0.5;            // seconds a cube stays in the scene after its flight ends
   int pool = 0;                   // cubes in the model; 0: enough for every flight plus linger (on demand: 4)

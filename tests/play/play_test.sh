@@ -48,6 +48,13 @@ awk -v t="$travel" 'BEGIN {exit !(t > 1.0)}' || fail "the motion travels $travel
   { cat "$out/walker.log"; fail "mimic play of the planar walker"; }
 grep -q "wrote $out/walker.mp4 (25 frames)" "$out/walker.log" || { cat "$out/walker.log"; fail "0.2 s of the walker at 125 Hz is 25 frames"; }
 
+# DeepMimic's dog (its committed trot): a body without a chest gets its cubes at its root.
+printf '0.3 b\n' > "$out/dog.txt"
+"$mimic" play "$src/models/dog_trot_tracking_drift" --headless --script "$out/dog.txt" --seconds 0.6 --json "$out/dog.json" > "$out/dog.log" 2>&1 ||
+  { cat "$out/dog.log"; fail "mimic play of the dog's trot"; }
+events=$(tr -d ' \n' < "$out/dog.json")
+[[ $events == *'{"t":0.3,"event":"cube","skill":"dog_trot_tracking_drift"}'* ]] || fail "no cube thrown at the dog: $events"
+
 # Skills in runs' model directories (what mimic imitate writes: RUN/model) are named by their runs.
 mkdir -p "$out/my_walk" "$out/my_run"
 ln -s "$walk" "$out/my_walk/model" && ln -s "$run" "$out/my_run/model"
