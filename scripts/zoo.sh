@@ -156,13 +156,13 @@ while :; do
       else
         if ((jobs == 1)); then
           ZOO_PREPARED=1 ZOO_SKILL=1 setsid "$0" "$name" </dev/null &
-          name_of[$!]=$name
-          echo "zoo.sh: $name started (pid $!)"
+          where=""
         else
           ZOO_PREPARED=1 ZOO_SKILL=1 ZOO_THREADS=1 setsid "$0" "$name" >>"runs/zoo/$name.log" 2>&1 </dev/null &
-          name_of[$!]=$name
-          echo "zoo.sh: $name started (pid $!; its output: runs/zoo/$name.log)"
+          where="; its output: runs/zoo/$name.log"
         fi
+        name_of[$!]=$name
+        echo "zoo.sh: $name started (pid $!$where)"
       fi
     done
     pending=("${waiting[@]}")
