@@ -69,13 +69,16 @@ TEST(CharacterEnv, StandingWithZeroActionsRunsToTheTimeLimit) {
   CharacterEnvConfig cfg;
   cfg.max_seconds = 2.0;
   CharacterEnv env(test::humanoid3d(), cfg);
+  EXPECT_DOUBLE_EQ(env.control_dt(), 1.0 / 30.0) << "the world's control rate, known before any step";
   std::mt19937_64 rng(1);
   env.reset(rng);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(env.action_size());
   StepResult r;
   int steps = 0;
   do {
+    const double before = env.physics_data()->time;
     r = env.step(zero);
+    EXPECT_NEAR(env.physics_data()->time - before, env.control_dt(), 1e-9) << "step " << steps;
     ++steps;
   } while (!r.done());
   EXPECT_EQ(r.termination, Termination::TimeLimit);

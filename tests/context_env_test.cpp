@@ -2,13 +2,16 @@
 // re-drawn every `period` steps, settable at run time, and configurable on any environment.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <set>
 
 #include "core/error.hpp"
+#include "core/file_io.hpp"
 #include "core/yaml_reader.hpp"
 #include "env/context_env.hpp"
 #include "env/env_factory.hpp"
 #include "env/planar_walker.hpp"
+#include "test_data.hpp"
 
 using namespace mimic;
 
@@ -35,6 +38,7 @@ TEST(ContextEnv, AppendsTheOneHotAndRedrawsItEveryPeriod) {
   PlanarWalkerEnv plain;
   EXPECT_EQ(env.observation_size(), plain.observation_size() + 3);
   EXPECT_EQ(env.action_size(), plain.action_size());
+  EXPECT_DOUBLE_EQ(env.control_dt(), 0.008) << "the inner environment's control step (the walker's 125 Hz)";
   const auto layout = env.observation_layout();
   ASSERT_EQ(layout.back().name, "context");
   EXPECT_EQ(layout.back().offset, plain.observation_size());
@@ -104,4 +108,24 @@ TEST(ContextEnv, ConfiguredOnAnyEnvironment) {
   } catch (const ParseError& e) {
     EXPECT_NE(std::string(e.what()).find("unknown key 'env.context.perod'"), std::string::npos) << e.what();
   }
+}
+
+TEST(EnvFactory, AModelsEnvNameIsReadFromItsConfigAndABadConfigIsNamed) {
+  const auto dir = test::temp_dir("model_env_name");
+  write_file_atomic(dir / "config.yaml", "seed: 1\nenv: {name: planar_walker, max_steps: 10}\n");
+  EXPECT_EQ(model_env_name(dir), "planar_walker");
+  EXPECT_FALSE(env_has_character(model_env_name(dir)));
+  EXPECT_TRUE(env_has_character("tracking"));
+  EXPECT_TRUE(env_has_character("humanoid_forward")) << "imitation's old name, in older models";
+  write_file_atomic(dir / "config.yaml", "seed: 1\n");
+  EXPECT_EQ(model_env_name(dir), "") << "no env section: no name";
+  write_file_atomic(dir / "config.yaml", "env: {name: [\n");
+  try {
+    (void)model_env_name(dir);
+    FAIL() << "a config that is not YAML must be an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "config.yaml").string()), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(dir / "config.yaml");
+  EXPECT_THROW((void)model_env_name(dir), Error) << "no config.yaml";
 }

@@ -20,7 +20,7 @@
 #include "control/skill_impl.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "core/yaml_reader.hpp"
+#include "env/env_factory.hpp"
 #include "motion/clip_io.hpp"
 #include "render/offscreen.hpp"
 #include "render/video_writer.hpp"
@@ -168,17 +168,13 @@ std::vector<std::string> cube_settings(const PlayArgs& a) {
   return {fmt::format("env.projectiles={{enabled: true, every: 0, mass: {}, speed: {}}}", a.cube_mass, a.cube_speed)};
 }
 
-// Whether a model's environment has a simulated character to throw cubes at (the imitation and
-// tracking environments; the planar walker's and the reacher's have none, nor a key for cubes).
-// A directory without a readable config answers true: Skill::load then says what is wrong.
+// Whether a model's environment has a simulated character to throw cubes at (the planar walker's
+// and the reacher's have none, nor a key for cubes). A directory without a readable config or an
+// env name answers true: Skill::load then says what is wrong.
 bool takes_cubes(const std::filesystem::path& dir) {
-  const std::filesystem::path config = dir / "config.yaml";
   try {
-    const YamlReader reader(config.string());
-    const YAML::Node env = reader.parse(read_text_file(config), config.string())["env"];
-    if (!env.IsMap() || !env["name"].IsScalar()) return true;
-    const std::string name = env["name"].as<std::string>();
-    return name == "imitation" || name == "tracking" || name == "humanoid_forward";
+    const std::string name = model_env_name(dir);
+    return name.empty() || env_has_character(name);
   } catch (const Error&) {
     return true;
   }

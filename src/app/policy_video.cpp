@@ -45,12 +45,11 @@ PolicyVideoStats render_policy_video(Env& env_ref, const std::function<Eigen::Ve
   FrameHistory frames(history);
   auto start_episode = [&] { frames.reset(env->reset(rng)); };
   start_episode();
-  // Steps per video frame: the control rate measured on the first step, brought near opts.fps.
-  const double t0 = data->time;
+  // Steps per video frame: the environment's control step, brought near opts.fps.
+  const double control_dt = env->control_dt();
+  if (!(control_dt > 0)) throw Error("the environment does not say its control step");
   PolicyVideoStats stats;
   StepResult r = env->step(act(frames.stacked()));
-  const double control_dt = data->time - t0;
-  if (!(control_dt > 0)) throw Error("environment time does not advance");
   const int every = std::max(1, static_cast<int>(std::lround(1.0 / (opts.fps * control_dt))));
   const double fps = 1.0 / (every * control_dt);
   const int steps = static_cast<int>(std::lround(opts.seconds / control_dt));

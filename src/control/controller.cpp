@@ -202,8 +202,10 @@ Controller::Controller(std::vector<std::shared_ptr<const Skill>> skills, std::ui
         if (part.name == "goal") goal = part.offset;
     impl_->goal_offsets.push_back(goal);
   }
-  const CharacterEnv* character = character_of(*impl_->envs.front());
-  impl_->dt = character ? 1.0 / character->world().config().control_hz : impl_->envs.front()->control_dt();
+  impl_->dt = impl_->envs.front()->control_dt();
+  if (!(impl_->dt > 0))
+    throw Error("skill '" + impl_->skills.front()->name() + "' (" + impl_->skills.front()->directory().string() +
+                "): its environment does not say its control step");
   reset();
 }
 
@@ -263,10 +265,7 @@ StepInfo Controller::step() {
   c.stack();
   c.action = c.skill().act(c.input);
   c.apply_push();
-  const mjData* d = c.env().physics_data();
-  const double before = d ? d->time : 0.0;
   const StepResult r = c.env().step(c.action);
-  if (d && d->time > before) c.dt = d->time - before;  // environments that are not characters say it here
   ++c.steps;
   c.frames.pop_front();
   c.frames.push_back(r.observation);

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/math.hpp"
+#include "env/env_factory.hpp"
 #include "env/navigation_env.hpp"
 
 namespace mimic {
@@ -87,9 +88,7 @@ std::pair<YAML::Node, YamlReader> env_section(const std::filesystem::path& dir) 
 }  // namespace
 
 bool is_navigation_model(const std::filesystem::path& dir) {
-  if (!std::filesystem::exists(dir / "config.yaml")) return false;
-  const YAML::Node env = env_section(dir).first;
-  return env.IsMap() && env["name"].IsScalar() && env["name"].as<std::string>() == "navigation";
+  return std::filesystem::exists(dir / "config.yaml") && model_env_name(dir) == "navigation";
 }
 
 Navigator::Navigator(const std::filesystem::path& dir, const std::vector<std::string>& skill_settings) : view_(NavigationConfig{}) {

@@ -131,6 +131,7 @@ class CharacterEnv : public Env {
   StepResult step(const Eigen::VectorXd& action) override;
   const mjModel_* physics_model() const override { return world_.model(); }
   mjData_* physics_data() const override { return world_.data(); }
+  double control_dt() const override { return 1.0 / world_.config().control_hz; }
 
   void set_init_sampler(InitSampler sampler) { init_sampler_ = std::move(sampler); }
   // Starts in groups a caller can choose among (imitation: one group per clip of its list),

@@ -57,7 +57,7 @@ class Env {
   // The MuJoCo model and state behind the environment, for rendering; null when there is none.
   virtual const mjModel_* physics_model() const { return nullptr; }
   virtual mjData_* physics_data() const { return nullptr; }
-  // Simulated seconds per step(); 0 where the environment does not say (before it has stepped).
+  // Simulated seconds per step(); 0 where the environment does not say (wrappers pass on their inner one's).
   virtual double control_dt() const { return 0.0; }
 };
 

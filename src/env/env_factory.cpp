@@ -268,6 +268,17 @@ std::string env_names() {
   return names;
 }
 
+bool env_has_character(const std::string& name) {
+  return name == "imitation" || name == "tracking" || name == "humanoid_forward";
+}
+
+std::string model_env_name(const std::filesystem::path& dir) {
+  const std::filesystem::path config = dir / "config.yaml";
+  const YamlReader reader(config.string());
+  const YAML::Node env = reader.parse(read_text_file(config), config.string())["env"];
+  return env.IsMap() && env["name"].IsScalar() ? env["name"].as<std::string>() : "";
+}
+
 void register_env(const std::string& name, EnvMaker make) {
   const std::lock_guard lock(registry_mutex());
   for (const auto& [known, maker] : registered())

@@ -22,6 +22,14 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader);
 // The names make_env_factory knows, for messages and help.
 std::string env_names();
 
+// Whether environments of that name simulate a character (imitation, tracking and
+// humanoid_forward, imitation's old name): the ones with terrain, pushes and cubes.
+bool env_has_character(const std::string& name);
+
+// The env name in a run or model directory's config.yaml; "" where the file has no env name.
+// Throws Error naming the file where it is missing or not YAML.
+std::string model_env_name(const std::filesystem::path& dir);
+
 // An environment a higher layer provides (the navigation task over a frozen skill needs the
 // runtime, in control/): make_env_factory hands it the env section (its keys to read and check;
 // the caller finishes the section) and the reader. A name already known keeps its first maker.

@@ -52,6 +52,7 @@ TEST(NavigationEnv, SeesTheStairsAheadAndCommandsTheSkillsHeading) {
   EXPECT_EQ(layout[0].size, 31 * 21);
   EXPECT_EQ(env.observation_size(), 31 * 21 + 3);
   EXPECT_EQ(env.action_size(), 1);
+  EXPECT_DOUBLE_EQ(env.control_dt(), 5.0 / 30.0) << "a decision: 5 of the skill's 30 Hz steps";
   std::mt19937_64 rng(1);
   const Eigen::VectorXd obs = env.reset(rng);
   const Vec3 root = character->world().root_position();
@@ -202,6 +203,11 @@ TEST(Navigator, DrivesItsSkillOnItsCourseEveryDecision) {
   trainer.write_runtime_networks(dir / kRuntimeFileName);
   EXPECT_TRUE(is_navigation_model(dir));
   EXPECT_FALSE(is_navigation_model(steered));
+  EXPECT_FALSE(is_navigation_model(dir / "nonexistent")) << "no config.yaml: not a navigation model";
+  EXPECT_EQ(model_env_name(dir), "navigation");
+  EXPECT_EQ(model_env_name(steered), "imitation");
+  EXPECT_FALSE(env_has_character("navigation"));
+  EXPECT_TRUE(env_has_character("imitation"));
 
   Navigator nav(dir);
   EXPECT_EQ(nav.config().decision_steps, 4);
