@@ -7,11 +7,13 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <random>
 #include <fstream>
 #include <set>
 #include <string>
 
 #include "core/error.hpp"
+#include "env/reacher_arm.hpp"
 #include "motion/builtin.hpp"
 #include "render/clip_video.hpp"
 #include "render/line_chart.hpp"
@@ -69,6 +71,34 @@ TEST(Render, OffscreenFrameShowsTheCharacter) {
   long differing = 0;
   for (std::size_t i = 0; i < rgb.size(); ++i) differing += rgb[i] != empty_rgb[i];
   EXPECT_GT(differing, 300);  // the body covers a visible patch of pixels
+}
+
+TEST(Render, AModelsOwnCameraFramesIt) {
+  // The reacher's arm lies on a 0.8 m table that its model views from 0.8 m above. From the
+  // humanoid's free camera (3.5 m away) the table is a speck; from its own camera it fills the picture.
+  ReacherArmEnv env(ReacherConfig::two_link());
+  std::mt19937_64 rng(1);
+  env.reset(rng);
+  std::vector<std::uint8_t> free_rgb, own_rgb, unused;
+  CameraSpec own;
+  own.model_camera = env.view_camera();
+  EXPECT_EQ(own.model_camera, 0) << "the reacher is filmed by its camera from above";
+  CameraSpec missing;
+  missing.model_camera = 1;
+  MIMIC_RENDER_OR_SKIP({
+    OffscreenRenderer r(env.physics_model(), 160, 120);
+    r.render(env.physics_data(), CameraSpec{}, free_rgb);
+    r.render(env.physics_data(), own, own_rgb);
+    EXPECT_THROW(r.render(env.physics_data(), missing, unused), Error) << "the reacher has one camera";
+  });
+  // The share of the picture that is the pale grey table (or the arm on it).
+  auto table_share = [](const std::vector<std::uint8_t>& rgb) {
+    long lit = 0;
+    for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) lit += rgb[i] > 120 && rgb[i + 1] > 120 && rgb[i + 2] > 120;
+    return static_cast<double>(lit) / static_cast<double>(rgb.size() / 3);
+  };
+  EXPECT_LT(table_share(free_rgb), 0.1);
+  EXPECT_GT(table_share(own_rgb), 0.6);
 }
 
 TEST(Render, TwoSecondClipMakesAValidMp4OfSixtyFrames) {

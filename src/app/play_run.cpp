@@ -76,6 +76,10 @@ const std::vector<CameraSpec> kViews = {
 };
 
 
+// An environment with a view of its own (Env::view_camera: the reacher's from above) is first seen by it; then kViews.
+bool has_own_camera(const Controller& c) { return ControllerInternals::active_env(c).view_camera() >= 0; }
+std::size_t view_count(const Controller& c) { return kViews.size() + (has_own_camera(c) ? 1 : 0); }
+
 // What the user sees and steers besides the session: the view, pause, recording.
 struct View {
   std::size_t view = 0;
@@ -97,7 +101,7 @@ void press(const std::string& key, PlaySession& session, View& view) {
     session.reset();
     view.follow.restart();
   } else if (key == "c") {
-    view.view = (view.view + 1) % kViews.size();
+    view.view = (view.view + 1) % view_count(session.controller());
   } else if (key == "space") {
     view.paused = !view.paused;
   } else if (key == "v") {
@@ -113,7 +117,12 @@ void press(const std::string& key, PlaySession& session, View& view) {
 }
 
 CameraSpec camera(View& view, const Controller& c) {
-  CameraSpec cam = kViews[view.view];
+  if (has_own_camera(c) && view.view == 0) {
+    CameraSpec own;
+    own.model_camera = ControllerInternals::active_env(c).view_camera();
+    return own;
+  }
+  CameraSpec cam = kViews[view.view - (has_own_camera(c) ? 1 : 0)];
   cam.lookat = view.follow.update(Vec3(c.root_position()));
   cam.lookat.z() = 0.9;
   cam.azimuth += view.azimuth_offset;

@@ -80,6 +80,7 @@ PolicyVideoStats render_policy_video(Env& env_ref, const std::function<Eigen::Ve
     if (t % every == 0) {
       CameraSpec cam = opts.camera;
       cam.lookat = Vec3(look.x(), look.y(), opts.camera.lookat.z());
+      cam.model_camera = env->view_camera();  // an environment's own view (the reacher's from above), else the one following the root
       // A start without a clip (a fixed pose) has no ghost until an episode that starts on one.
       if (ghost) {
         if (const std::optional<Pose> ref = character->reference_pose()) character->world().write_pose(*ref, ghost.get());

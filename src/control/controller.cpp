@@ -416,6 +416,7 @@ Eigen::Vector3d Controller::root_position() const {
 }
 
 const CharacterEnv* ControllerInternals::active_character(const Controller& c) { return character_of(*c.impl_->envs[c.impl_->active]); }
+const Env& ControllerInternals::active_env(const Controller& c) { return *c.impl_->envs[c.impl_->active]; }
 
 double Controller::highest_joint_height() const {
   const CharacterEnv* character = character_of(*impl_->envs[impl_->active]);

@@ -10,6 +10,8 @@ struct ControllerInternals {
   // The active skill's character environment (its world, its character); null where the skill
   // drives no character.
   static const CharacterEnv* active_character(const Controller& c);
+  // The active skill's environment.
+  static const Env& active_env(const Controller& c);
 };
 
 }  // namespace mimic

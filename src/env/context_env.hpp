@@ -41,6 +41,7 @@ class ContextEnv : public Env {
   const mjModel_* physics_model() const override { return inner_->physics_model(); }
   mjData_* physics_data() const override { return inner_->physics_data(); }
   double control_dt() const override { return inner_->control_dt(); }
+  int view_camera() const override { return inner_->view_camera(); }
 
   int context() const { return context_; }
   void set_context(int c);  // Error outside [0, contexts); the next draw may change it

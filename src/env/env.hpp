@@ -59,6 +59,9 @@ class Env {
   virtual mjData_* physics_data() const { return nullptr; }
   // Simulated seconds per step(); 0 where the environment does not say (wrappers pass on their inner one's).
   virtual double control_dt() const { return 0.0; }
+  // The physics model's camera that films this environment best (its index), or -1: a camera
+  // that follows the root from the side (videos, `mimic play`).
+  virtual int view_camera() const { return -1; }
 };
 
 }  // namespace mimic

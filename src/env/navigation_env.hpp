@@ -65,6 +65,7 @@ class NavigationEnv final : public Env {
   const mjModel_* physics_model() const override { return inner_->physics_model(); }
   mjData_* physics_data() const override { return inner_->physics_data(); }
   double control_dt() const override { return cfg_.decision_steps * inner_->control_dt(); }  // one decision
+  int view_camera() const override { return inner_->view_camera(); }
 
   CharacterEnv& character() { return *inner_; }
   const NavigationConfig& config() const { return cfg_; }

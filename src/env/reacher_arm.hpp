@@ -62,6 +62,7 @@ class ReacherArmEnv : public MjcfEnv {
   // Terms "reach" (distance during this step's target) and "control". The target is re-drawn
   // after the step that completes a period, so the returned observation shows the new one.
   StepResult step(const Eigen::VectorXd& action) override;
+  int view_camera() const override { return 0; }  // "top": the arm moves in the table's plane, seen from above
 
   const ReacherConfig& config() const { return cfg_; }
   int links() const { return static_cast<int>(cfg_.link_lengths.size()); }

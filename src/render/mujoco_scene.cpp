@@ -3,6 +3,9 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <string>
+
+#include "core/error.hpp"
 
 namespace mimic {
 
@@ -38,11 +41,18 @@ int MujocoScene::offscreen_height() const { return impl_->gl.offHeight; }
 
 void MujocoScene::draw(mjData* data, const CameraSpec& cam, int width, int height, mjData* ghost, const Overlay& overlay) {
   Impl& s = *impl_;
-  s.camera.type = mjCAMERA_FREE;
-  for (int k = 0; k < 3; ++k) s.camera.lookat[k] = cam.lookat[k];
-  s.camera.distance = cam.distance;
-  s.camera.azimuth = cam.azimuth;
-  s.camera.elevation = cam.elevation;
+  if (cam.model_camera >= 0) {
+    if (cam.model_camera >= s.model->ncam)
+      throw Error("camera " + std::to_string(cam.model_camera) + " asked for: the model has " + std::to_string(s.model->ncam) + " cameras");
+    s.camera.type = mjCAMERA_FIXED;
+    s.camera.fixedcamid = cam.model_camera;
+  } else {
+    s.camera.type = mjCAMERA_FREE;
+    for (int k = 0; k < 3; ++k) s.camera.lookat[k] = cam.lookat[k];
+    s.camera.distance = cam.distance;
+    s.camera.azimuth = cam.azimuth;
+    s.camera.elevation = cam.elevation;
+  }
   mjv_updateScene(s.model, data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
   if (ghost) {
     // The ghost's bodies (not the static floor), translucent and tinted.

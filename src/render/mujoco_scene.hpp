@@ -17,6 +17,7 @@ struct CameraSpec {
   double distance = 3.5;
   double azimuth = 90.0;    // degrees; 90 looks at the character's left side when it faces +X
   double elevation = -12.0;  // degrees
+  int model_camera = -1;     // >= 0: the model's own camera of that index (an MJCF <camera>); the rest is then unused
 };
 
 // Text drawn over a picture: lines on the left and the right of its top (MuJoCo's overlay).

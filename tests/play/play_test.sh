@@ -48,6 +48,14 @@ awk -v t="$travel" 'BEGIN {exit !(t > 1.0)}' || fail "the motion travels $travel
   { cat "$out/walker.log"; fail "mimic play of the planar walker"; }
 grep -q "wrote $out/walker.mp4 (25 frames)" "$out/walker.log" || { cat "$out/walker.log"; fail "0.2 s of the walker at 125 Hz is 25 frames"; }
 
+# The reaching arm is seen by its environment's own camera, from above: its pale table fills the
+# picture (from the side camera that follows a character, the table is a speck on black).
+"$mimic" play "$src/models/reacher_ppo" --headless --seconds 0.2 --width 320 --height 180 -o "$out/reacher.mp4" > "$out/reacher.log" 2>&1 ||
+  { cat "$out/reacher.log"; fail "mimic play of the reacher"; }
+brightness=$(ffmpeg -loglevel error -i "$out/reacher.mp4" -vf "select=eq(n\,5),signalstats,metadata=print:key=lavfi.signalstats.YAVG:file=-" -f null - |
+  awk -F= '/YAVG/ {print $2}')
+awk -v b="$brightness" 'BEGIN {exit !(b > 100)}' || fail "the reacher's frame has mean brightness '$brightness' (its table, seen from above, should fill it: > 100)"
+
 # DeepMimic's dog (its committed trot): a body without a chest gets its cubes at its root.
 printf '0.3 b\n' > "$out/dog.txt"
 "$mimic" play "$src/models/dog_trot_tracking_drift" --headless --script "$out/dog.txt" --seconds 0.6 --json "$out/dog.json" > "$out/dog.log" 2>&1 ||

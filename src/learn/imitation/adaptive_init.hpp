@@ -86,6 +86,7 @@ class AdaptiveInitEnv final : public Env {
   const mjModel_* physics_model() const override { return inner_->physics_model(); }
   mjData_* physics_data() const override { return inner_->physics_data(); }
   double control_dt() const override { return inner_->control_dt(); }
+  int view_camera() const override { return inner_->view_camera(); }
   // Episodes finished since the last call, oldest first.
   std::vector<AdaptiveInit::Outcome> take_outcomes();
 
