@@ -492,6 +492,10 @@ if(EXISTS ${DATA}/deepmimic/characters/humanoid3d.txt)
   run_ok(imitate ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_run --samples 1 --trials 1 --video-seconds 0.5 --threads 1
          --set collect.samples=256 --set collect.envs=2 --set env.max_seconds=2)
   expect_in("${LAST_OUT}" "iter     1/1  samples        256 (100.0 %)")
+  # An iteration in which no episode ends (32 steps an env of 10 s episodes) shows its return as "-", not nan.
+  run_ok(imitate ${OUT}/jj_mirror.mclip -o ${OUT}/imitate_no_episode_ends --samples 1 --trials 1 --video-seconds 0 --threads 1
+         --set collect.samples=64 --set collect.envs=2 --set env.max_seconds=10)
+  expect_in("${LAST_OUT}" "return        -  elapsed")
   foreach(f model/networks.mimic model/checkpoint.pt model/config.yaml model/demos.csv model/clips/jumping_jack_mirrored.mclip
             eval.json video.mp4 curves.png report.md)
     if(NOT EXISTS ${OUT}/imitate_run/${f})

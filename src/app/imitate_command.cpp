@@ -367,9 +367,11 @@ bool train(const ImitateArgs& a) {
     const double samples = m.get("samples"), elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (first_samples < 0) first_samples = samples - static_cast<double>(per_iteration);
     const double rate = (samples - first_samples) / std::max(elapsed, 1e-9);
-    spdlog::info("iter {:>5}/{}  samples {:>10.0f} ({:4.1f} %)  reward {:6.3f}  return {:8.2f}  elapsed {}  ETA {}", m.iteration,
-                 cfg.iterations, samples, 100.0 * samples / static_cast<double>(total), m.get("reward"), m.get("return"),
-                 duration(m.get("wall_s")), duration((static_cast<double>(total) - samples) / rate));
+    const double episode_return = m.get("return");  // of the episodes that ended in the iteration: NaN where none did
+    spdlog::info("iter {:>5}/{}  samples {:>10.0f} ({:4.1f} %)  reward {:6.3f}  return {:>8}  elapsed {}  ETA {}", m.iteration,
+                 cfg.iterations, samples, 100.0 * samples / static_cast<double>(total), m.get("reward"),
+                 std::isfinite(episode_return) ? fmt::format("{:.2f}", episode_return) : "-", duration(m.get("wall_s")),
+                 duration((static_cast<double>(total) - samples) / rate));
   };
   handle_stop_signals();
   Trainer trainer(cfg, opts);
