@@ -117,12 +117,13 @@ void press(const std::string& key, PlaySession& session, View& view) {
 }
 
 CameraSpec camera(View& view, const Controller& c) {
-  if (has_own_camera(c) && view.view == 0) {
-    CameraSpec own;
-    own.model_camera = ControllerInternals::active_env(c).view_camera();
-    return own;
+  const bool own = has_own_camera(c);
+  if (own && view.view == 0) {
+    CameraSpec its;
+    its.model_camera = ControllerInternals::active_env(c).view_camera();
+    return its;
   }
-  CameraSpec cam = kViews[view.view - (has_own_camera(c) ? 1 : 0)];
+  CameraSpec cam = kViews[view.view - (own ? 1 : 0)];
   cam.lookat = view.follow.update(Vec3(c.root_position()));
   cam.lookat.z() = 0.9;
   cam.azimuth += view.azimuth_offset;

@@ -66,6 +66,7 @@ PolicyVideoStats render_policy_video(Env& env_ref, const std::function<Eigen::Ve
   VideoWriter video(out, opts.width, opts.height, fps);
   std::vector<std::uint8_t> rgb;
   CameraFollow follow;
+  const int own_camera = env->view_camera();  // an environment's own view (the reacher's from above), else the one following the root
   double episode_return = 0;
   for (int t = 1; t <= steps; ++t) {
     if (behaviours && !opts.contexts.empty() && t % context_steps == 0) {
@@ -80,7 +81,7 @@ PolicyVideoStats render_policy_video(Env& env_ref, const std::function<Eigen::Ve
     if (t % every == 0) {
       CameraSpec cam = opts.camera;
       cam.lookat = Vec3(look.x(), look.y(), opts.camera.lookat.z());
-      cam.model_camera = env->view_camera();  // an environment's own view (the reacher's from above), else the one following the root
+      cam.model_camera = own_camera;
       // A start without a clip (a fixed pose) has no ghost until an episode that starts on one.
       if (ghost) {
         if (const std::optional<Pose> ref = character->reference_pose()) character->world().write_pose(*ref, ghost.get());
