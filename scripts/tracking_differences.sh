@@ -3,7 +3,7 @@
 # walk (docs/results/tracking.md, "How mimic's tracking differs"): configs/humanoid_walk_tracking.yaml
 # as it is, and with one difference changed to DeepMimic's way at a time, at the same budget;
 # `mimic eval` of each (20 trials of 20 s from evenly spaced phases: normalised return, progress,
-# imitation error, falls) into <out>/<name>.json, then <out>/table.md and the failure-rate curves
+# imitation error, falls) into <results>/<name>.json, then <results>/table.md and the failure-rate curves
 # <figures>/tracking_differences_falls.png.
 #   baseline         the config as it is
 #   deepmimic_reward 0.5 pose, 0.05 velocity, 0.15 end effector, 0.2 root, 0.1 centre-of-mass
@@ -12,21 +12,25 @@
 #   short_episodes   2 s episodes (evaluated on 20 s), any contact but the feet's a fall (3)
 #   annealed_noise   action noise σ from 0.2 down to 0.07 over the run (4)
 #   lag_observed     the reference's root in the observation (`reference_root`) (5)
-# Two runs at a time, one thread each. A run whose evaluation is there is not trained again; one
-# with a checkpoint is resumed, so a stopped script goes on where it was.
-# Usage: scripts/tracking_differences.sh [samples per run (default 5000000)] [out dir]
-# REPORT_ONLY=1 only writes the table and the figure; FIGURES=dir (default: out dir) takes it.
+# Two runs at a time, one thread each. A finished run's evaluation and learning curve are kept in
+# RESULTS (default docs/data/tracking_differences: <name>.json and <name>.csv, its metrics.csv),
+# which is committed, so that the six runs can be made over several sessions and machines: a run
+# whose evaluation is there is not trained again; one with a checkpoint in the out dir is resumed.
+# The table and the figure cover the runs whose results are there.
+# Usage: scripts/tracking_differences.sh [samples per run (default 5000000)] [out dir (default runs/tracking_differences)]
+# REPORT_ONLY=1 only writes the table and the figure; FIGURES=dir (default: RESULTS) takes the figure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 samples=${1:-5000000}
 out=${2:-runs/tracking_differences}
 mimic=${MIMIC:-build/src/mimic}
 config=configs/humanoid_walk_tracking.yaml
-figures=${FIGURES:-$out}
+results=${RESULTS:-docs/data/tracking_differences}
+figures=${FIGURES:-$results}
 iterations=$(((samples + 4095) / 4096))
 [ -x "$mimic" ] || { echo "tracking_differences.sh: build mimic first (cmake --preset default && cmake --build --preset default)" >&2; exit 1; }
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
-mkdir -p "$out" "$figures"
+mkdir -p "$out" "$results" "$figures"
 names=(baseline deepmimic_reward small_steps short_episodes annealed_noise lag_observed)
 declare -A changes=(
   [baseline]=""
@@ -38,9 +42,15 @@ declare -A changes=(
 )
 
 report() {
-  local runs=("${names[@]/#/$out/}")
-  "$mimic" table "${runs[@]/%/.json}" --names "${names[@]}" -o "$out/table.md"
-  "$mimic" plot "${runs[@]}" --names "${names[@]}" --y failure_rate --smooth 20 \
+  local done=() name
+  for name in "${names[@]}"; do [[ -f $results/$name.json ]] && done+=("$name"); done
+  if ((${#done[@]} == 0)); then
+    echo "tracking_differences.sh: no run is finished yet (nothing in $results)" >&2
+    return
+  fi
+  local runs=("${done[@]/#/$results/}")
+  "$mimic" table "${runs[@]/%/.json}" --names "${done[@]}" -o "$results/table.md"
+  "$mimic" plot "${runs[@]/%/.csv}" --names "${done[@]}" --y failure_rate --smooth 20 \
     --title "The walk tracked, one difference changed at a time: falls per episode" -o "$figures/tracking_differences_falls.png"
 }
 if [[ ${REPORT_ONLY:-0} == 1 ]]; then
@@ -51,7 +61,7 @@ fi
 # train NAME: one run and its evaluation (on 20 s episodes whatever it trained on), logged to <out>/NAME.log.
 train() {
   local name=$1 sets=() change
-  if [[ -f $out/$name.json ]]; then
+  if [[ -f $results/$name.json ]]; then
     echo "$name: evaluated already, not trained again"
     return
   fi
@@ -67,7 +77,8 @@ train() {
   [[ $name == short_episodes ]] && eval_sets=(--set env.max_seconds=20)
   {
     "$mimic" train "${start[@]}" -o "$out/$name" &&
-      "$mimic" eval "$out/$name" --trials 20 "${eval_sets[@]}" --json "$out/$name.json"
+      "$mimic" eval "$out/$name" --trials 20 "${eval_sets[@]}" --json "$out/$name.json" &&
+      cp "$out/$name/metrics.csv" "$results/$name.csv" && mv "$out/$name.json" "$results/$name.json"
   } > "$out/$name.log" 2>&1 || echo "$name failed: see $out/$name.log" >&2
 }
 
@@ -81,4 +92,4 @@ for name in "${names[@]}"; do
 done
 wait
 report
-echo "done: $out"
+echo "done: $results"
