@@ -117,6 +117,10 @@ TEST(EnvFactory, AModelsEnvNameIsReadFromItsConfigAndABadConfigIsNamed) {
   EXPECT_FALSE(env_has_character(model_env_name(dir)));
   EXPECT_TRUE(env_has_character("tracking"));
   EXPECT_TRUE(env_has_character("humanoid_forward")) << "imitation's old name, in older models";
+  EXPECT_FALSE(env_has_character("reacher"));
+  EXPECT_FALSE(env_has_character("no_such_env"));
+  EXPECT_EQ(env_names().rfind("imitation, tracking, planar_walker, reacher", 0), 0u) << env_names();
+  EXPECT_EQ(env_names().find("humanoid_forward"), std::string::npos) << "the old name is accepted, not offered";
   write_file_atomic(dir / "config.yaml", "seed: 1\n");
   EXPECT_EQ(model_env_name(dir), "") << "no env section: no name";
   write_file_atomic(dir / "config.yaml", "env: {name: [\n");

@@ -261,15 +261,44 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
 
 }  // namespace
 
+namespace {
+
+// The environments this layer builds: each name once, with whether it simulates a character
+// (terrain, pushes and cubes apply) and its maker.
+struct BuiltInEnv {
+  const char* name;
+  bool has_character;
+  EnvFactory (*make)(ConfigSection&, const YamlReader&);
+  bool listed;  // in messages and help (humanoid_forward: imitation's name in models saved before it had one)
+};
+constexpr BuiltInEnv kBuiltInEnvs[] = {
+    {"imitation", true, imitation, true},
+    {"tracking", true, tracking, true},
+    {"planar_walker", false, [](ConfigSection& s, const YamlReader&) { return planar_walker(s); }, true},
+    {"reacher", false, [](ConfigSection& s, const YamlReader&) { return reacher(s); }, true},
+    {"humanoid_forward", true, imitation, false},
+};
+
+const BuiltInEnv* built_in_env(const std::string& name) {
+  for (const BuiltInEnv& e : kBuiltInEnvs)
+    if (name == e.name) return &e;
+  return nullptr;
+}
+
+}  // namespace
+
 std::string env_names() {
-  std::string names = "imitation, tracking, planar_walker, reacher";
+  std::string names;
+  for (const BuiltInEnv& e : kBuiltInEnvs)
+    if (e.listed) names += (names.empty() ? "" : ", ") + std::string(e.name);
   const std::lock_guard lock(registry_mutex());
   for (const auto& [name, make] : registered()) names += ", " + name;
   return names;
 }
 
 bool env_has_character(const std::string& name) {
-  return name == "imitation" || name == "tracking" || name == "humanoid_forward";
+  const BuiltInEnv* e = built_in_env(name);
+  return e != nullptr && e->has_character;
 }
 
 std::string model_env_name(const std::filesystem::path& dir) {
@@ -288,8 +317,8 @@ void register_env(const std::string& name, EnvMaker make) {
 
 EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   ConfigSection s(reader, env, "env");
-  // humanoid_forward: the imitation environment's name in models saved before it had one.
-  std::vector<std::string> names{"imitation", "tracking", "planar_walker", "reacher", "humanoid_forward"};
+  std::vector<std::string> names;
+  for (const BuiltInEnv& e : kBuiltInEnvs) names.emplace_back(e.name);
   EnvMaker other;
   {
     const std::lock_guard lock(registry_mutex());
@@ -304,11 +333,7 @@ EnvFactory make_env_factory(const YAML::Node& env, const YamlReader& reader) {
   }
   EnvFactory f;
   try {
-    f = other                   ? other(s, reader)
-        : name == "planar_walker" ? planar_walker(s)
-        : name == "reacher"     ? reacher(s)
-        : name == "tracking"    ? tracking(s, reader)
-                                : imitation(s, reader);
+    f = other ? other(s, reader) : built_in_env(name)->make(s, reader);
   } catch (const ParseError&) {
     throw;
   } catch (const Error& e) {
