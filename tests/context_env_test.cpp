@@ -114,6 +114,9 @@ TEST(EnvFactory, AModelsEnvNameIsReadFromItsConfigAndABadConfigIsNamed) {
   const auto dir = test::temp_dir("model_env_name");
   write_file_atomic(dir / "config.yaml", "seed: 1\nenv: {name: planar_walker, max_steps: 10}\n");
   EXPECT_EQ(model_env_name(dir), "planar_walker");
+  const ModelEnvSection section = model_env_section(dir);
+  EXPECT_EQ(section.env["max_steps"].as<int>(), 10);
+  EXPECT_NE(section.reader.source().find("config.yaml"), std::string::npos) << "its messages name the file";
   EXPECT_FALSE(env_has_character(model_env_name(dir)));
   EXPECT_TRUE(env_has_character("tracking"));
   EXPECT_TRUE(env_has_character("humanoid_forward")) << "imitation's old name, in older models";

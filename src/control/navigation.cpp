@@ -7,7 +7,6 @@
 #include "control/skill_impl.hpp"
 #include "core/config_override.hpp"
 #include "core/error.hpp"
-#include "core/file_io.hpp"
 #include "core/math.hpp"
 #include "env/env_factory.hpp"
 #include "env/navigation_env.hpp"
@@ -75,18 +74,6 @@ EnvFactory navigation(ConfigSection& s, const YamlReader& reader) {
 
 void register_control_envs() { register_env("navigation", navigation); }
 
-namespace {
-
-// The env section of a model or run directory's config.yaml (its reader, for paths beside it).
-std::pair<YAML::Node, YamlReader> env_section(const std::filesystem::path& dir) {
-  const std::filesystem::path config = dir / "config.yaml";
-  YamlReader reader(config.string());
-  YAML::Node env = reader.parse(read_text_file(config), "")["env"];
-  return {env, std::move(reader)};
-}
-
-}  // namespace
-
 bool is_navigation_model(const std::filesystem::path& dir) {
   return std::filesystem::exists(dir / "config.yaml") && model_env_name(dir) == "navigation";
 }
@@ -96,9 +83,9 @@ Navigator::Navigator(const std::filesystem::path& dir, const std::vector<std::st
     throw Error(dir.string() + ": not a navigation controller (its config.yaml's env is not `name: navigation`)");
   register_control_envs();
   controller_ = Skill::load(dir);  // checks the whole config, and that the networks fit the task
-  const auto [env, reader] = env_section(dir);
-  ConfigSection section(reader, env, "env");
-  const NavigationSpec spec = read_navigation(section, reader);
+  const ModelEnvSection env = model_env_section(dir);
+  ConfigSection section(env.reader, env.env, "env");
+  const NavigationSpec spec = read_navigation(section, env.reader);
   skill_ = load_low_level(spec, skill_settings);
   view_ = NavigationView(spec.config);
 }

@@ -301,10 +301,15 @@ bool env_has_character(const std::string& name) {
   return e != nullptr && e->has_character;
 }
 
-std::string model_env_name(const std::filesystem::path& dir) {
+ModelEnvSection model_env_section(const std::filesystem::path& dir) {
   const std::filesystem::path config = dir / "config.yaml";
-  const YamlReader reader(config.string());
-  const YAML::Node env = reader.parse(read_text_file(config), config.string())["env"];
+  YamlReader reader(config.string());
+  YAML::Node env = reader.parse(read_text_file(config), config.string())["env"];
+  return {env, std::move(reader)};
+}
+
+std::string model_env_name(const std::filesystem::path& dir) {
+  const YAML::Node env = model_env_section(dir).env;
   return env.IsMap() && env["name"].IsScalar() ? env["name"].as<std::string>() : "";
 }
 

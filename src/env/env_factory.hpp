@@ -26,6 +26,15 @@ std::string env_names();
 // humanoid_forward, imitation's old name): the ones with terrain, pushes and cubes.
 bool env_has_character(const std::string& name);
 
+// The env section of a run or model directory's config.yaml (undefined where it has none), with
+// the file's reader (for messages naming it, and data paths beside it). Throws Error naming the
+// file where it is missing or not YAML.
+struct ModelEnvSection {
+  YAML::Node env;
+  YamlReader reader;
+};
+ModelEnvSection model_env_section(const std::filesystem::path& dir);
+
 // The env name in a run or model directory's config.yaml; "" where the file has no env name.
 // Throws Error naming the file where it is missing or not YAML.
 std::string model_env_name(const std::filesystem::path& dir);
