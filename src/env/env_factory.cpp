@@ -259,10 +259,6 @@ EnvFactory tracking(ConfigSection& s, const YamlReader& reader) {
   return [model = ch.model, clip, c] { return std::unique_ptr<Env>(make_tracking_env(*model, clip, c)); };
 }
 
-}  // namespace
-
-namespace {
-
 // The environments this layer builds: each name once, with whether it simulates a character
 // (terrain, pushes and cubes apply) and its maker.
 struct BuiltInEnv {
