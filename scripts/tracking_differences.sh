@@ -42,15 +42,15 @@ declare -A changes=(
 )
 
 report() {
-  local done=() name
-  for name in "${names[@]}"; do [[ -f $results/$name.json ]] && done+=("$name"); done
-  if ((${#done[@]} == 0)); then
+  local finished=() name
+  for name in "${names[@]}"; do [[ -f $results/$name.json ]] && finished+=("$name"); done
+  if ((${#finished[@]} == 0)); then
     echo "tracking_differences.sh: no run is finished yet (nothing in $results)" >&2
     return
   fi
-  local runs=("${done[@]/#/$results/}")
-  "$mimic" table "${runs[@]/%/.json}" --names "${done[@]}" -o "$results/table.md"
-  "$mimic" plot "${runs[@]/%/.csv}" --names "${done[@]}" --y failure_rate --smooth 20 \
+  local runs=("${finished[@]/#/$results/}")
+  "$mimic" table "${runs[@]/%/.json}" --names "${finished[@]}" -o "$results/table.md"
+  "$mimic" plot "${runs[@]/%/.csv}" --names "${finished[@]}" --y failure_rate --smooth 20 \
     --title "The walk tracked, one difference changed at a time: falls per episode" -o "$figures/tracking_differences_falls.png"
 }
 if [[ ${REPORT_ONLY:-0} == 1 ]]; then
