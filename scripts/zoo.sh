@@ -31,6 +31,7 @@ mimic=${MIMIC:-build/src/mimic}
 # name -> the arguments of its one command (after `mimic`); -o runs/zoo/<name> is added.
 declare -A command=(
   [humanoid_walk]="imitate $motions/humanoid3d_walk.txt"
+  [humanoid_walk_tracking]="imitate $motions/humanoid3d_walk.txt --method tracking"
   [humanoid_run]="imitate $motions/humanoid3d_run.txt --from runs/zoo/humanoid_walk/model"
   [humanoid_kick]="imitate $motions/humanoid3d_kick.txt"
   [humanoid_punch]="imitate $motions/humanoid3d_punch.txt --from runs/zoo/humanoid_walk/model"
@@ -43,7 +44,7 @@ declare -A command=(
   [walker_ppo]="train configs/walker_ppo.yaml"
 )
 order=(humanoid_walk humanoid_run humanoid_kick humanoid_punch humanoid_walk_from_standing humanoid_cmu_walk
-       humanoid_getup_facedown humanoid_getup_faceup humanoid_jumping_jack dog_trot walker_ppo)
+       humanoid_getup_facedown humanoid_getup_faceup humanoid_jumping_jack humanoid_walk_tracking dog_trot walker_ppo)
 # name -> the zoo skill whose model it starts from.
 declare -A needs=([humanoid_run]=humanoid_walk [humanoid_punch]=humanoid_walk [humanoid_walk_from_standing]=humanoid_walk)
 

@@ -415,3 +415,33 @@ TEST(ImitationEnv, BodiesTheClipPutsOnTheGroundAreNotFalls) {
       yaml)();
   EXPECT_EQ(dynamic_cast<const CharacterEnv&>(*tracking).fall_bodies(), falls("getup_faceup", true));
 }
+
+// `fall_links: all` (the tracking recipe's, for any character): every body, less those the clip
+// rests on. The walk keeps the 13 bodies the humanoid's explicit list names (all but the ankles);
+// the dog's trot its lower legs. Without allow_clip_contacts the feet would fall at every step.
+TEST(ImitationEnv, AllBodiesFallButThoseTheClipRestsOn) {
+  MIMIC_NEED_HUMANOID();
+  const YamlReader yaml("test.yaml");
+  auto falls = [&](const std::string& rest) {
+    const std::unique_ptr<Env> env = make_env_factory(yaml.parse("{name: tracking, " + rest + "}", ""), yaml)();
+    return dynamic_cast<const CharacterEnv&>(*env).fall_bodies();
+  };
+  EXPECT_EQ(falls("clip: deepmimic/motions/humanoid3d_walk.txt, fall_links: all, allow_clip_contacts: true"),
+            (std::vector<std::string>{"root", "chest", "neck", "right_hip", "right_knee", "right_shoulder", "right_elbow", "right_wrist",
+                                      "left_hip", "left_knee", "left_shoulder", "left_elbow", "left_wrist"}));
+  // The dog's trot spares the last two segments of each leg (hand and finger, foot and toe).
+  EXPECT_EQ(falls("character: deepmimic/characters/dog3d.txt, clip: deepmimic/motions/dog3d_trot.txt, fall_links: all, allow_clip_contacts: true"),
+            (std::vector<std::string>{"root", "spine0", "spine1", "neck", "head", "left_shoulder", "left_forearm", "right_shoulder",
+                                      "right_forearm", "left_upper_leg", "left_leg", "right_upper_leg", "right_leg", "tail0", "tail1"}));
+  EXPECT_THROW(
+      {
+        try {
+          (void)falls("clip: deepmimic/motions/humanoid3d_walk.txt, fall_links: all");
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("set allow_clip_contacts: true"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
+  EXPECT_THROW((void)falls("clip: deepmimic/motions/humanoid3d_walk.txt, fall_links: everything"), Error);
+}

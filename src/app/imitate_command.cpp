@@ -45,6 +45,9 @@ namespace fs = std::filesystem;
 constexpr const char* kDefaultCharacter = "deepmimic/characters/humanoid3d.txt";  // the recipes' (under the shared data)
 constexpr double kGetUpFallenStarts = 0.1;  // the share of a get-up's episodes that start fallen (ASE drops 10 %)
 constexpr int kDemonstrationPasses = 8;  // passes over each clip, offset by a fraction of a control step
+// The shortest evaluation episode: a run that trained on shorter ones (the tracking recipe's 2 s) is
+// judged over this long (a cyclic clip's trials run to it; a non-cyclic clip's end at the clip's end).
+constexpr double kEvalSeconds = 20.0;
 
 struct ImitateArgs {
   std::vector<fs::path> clips;
@@ -419,6 +422,15 @@ std::vector<fs::path> clips_of(const fs::path& dir) {
   return clips;
 }
 
+// The env overrides the model is evaluated with: episodes of kEvalSeconds where its config's
+// max_seconds is shorter; none otherwise.
+std::vector<std::string> eval_settings(const fs::path& model) {
+  const YAML::Node env = model_env_section(model).env;
+  const YAML::Node seconds = env.IsMap() ? env["max_seconds"] : YAML::Node();
+  if (seconds && seconds.IsScalar() && seconds.as<double>() < kEvalSeconds) return {fmt::format("env.max_seconds={}", kEvalSeconds)};
+  return {};
+}
+
 // The evaluation file of each clip: eval.json for one, eval_<clip>.json for several.
 fs::path eval_file(const fs::path& run, const fs::path& clip, std::size_t clips) {
   return clips == 1 ? run / "eval.json" : run / ("eval_" + clip.stem().string() + ".json");
@@ -462,7 +474,11 @@ void write_report(const ImitateArgs& a, bool video, int processes) {
   }
   text += "\n![learning curve](curves.png)\n\n";
   if (video) text += "Video: [video.mp4](video.mp4) (the translucent ghost is the clip).\n\n";
-  text += "The model is `model/` (its clips and demonstrations inside): `mimic eval " + (a.out / "model").string() +
+  std::string eval_sets;
+  for (const std::string& setting : eval_settings(a.out / "model")) eval_sets += " --set " + setting;
+  if (!eval_sets.empty())
+    text += fmt::format("Evaluated on episodes of {:.0f} s (`{}`), longer than those it trained on.\n\n", kEvalSeconds, eval_sets.substr(1));
+  text += "The model is `model/` (its clips and demonstrations inside): `mimic eval " + (a.out / "model").string() + eval_sets +
           "`, `mimic render " + (a.out / "model").string() + " -o skill.mp4 --ghost`, or load it from a program with the runtime " +
           "(docs/runtime.md). The evaluation files hold the figures above.\n";
   write_file_atomic(a.out / "report.md", text);
@@ -502,6 +518,7 @@ void imitate(const ImitateArgs& a) {
     EvalArgs e;
     // The clip named: an imitation environment draws starts from its clips but tracks none.
     e.run = model, e.episodes = a.trials, e.trials = a.trials, e.json = eval_file(a.out, clip, clips.size()), e.clip = clip;
+    e.settings = eval_settings(model);
     evaluate(e);
   }
   bool video = false;

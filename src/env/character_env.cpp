@@ -122,6 +122,11 @@ CharacterEnv::CharacterEnv(const CharacterModel& ch, const CharacterEnvConfig& c
   if (cfg.fall_links.empty()) {
     for (std::size_t j = 0; j < ch.bodies.size(); ++j)
       if (ch.bodies[j].fall_contact) fall_joints_.push_back(static_cast<int>(j));
+  } else if (cfg.fall_links == std::vector<std::string>{kAllFallLinks}) {
+    if (!cfg.allow_clip_contacts && cfg.early_termination)
+      throw KeyError("fall_links", "all: every body, the feet too, so every step would fall; set allow_clip_contacts: true (the bodies "
+                                   "the clip rests on the ground, a walk's feet, are then no falls) or list the bodies");
+    for (std::size_t j = 0; j < sk.joints.size(); ++j) fall_joints_.push_back(static_cast<int>(j));
   } else {
     for (const std::string& name : cfg.fall_links) {
       const int j = sk.find(name);

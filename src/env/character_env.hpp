@@ -32,12 +32,16 @@ struct StartMomentumSmoothing {
   bool linear = true;  // also the horizontal linear momentum; false: the angular momentum only
 };
 
+inline constexpr const char* kAllFallLinks = "all";  // CharacterEnvConfig::fall_links: every body
+
 struct CharacterEnvConfig {
   SimConfig sim;
   ObservationConfig observations;
   ActionMode action_mode = ActionMode::AxisAngle;
   // Bodies whose ground contact ends the episode as a fall. Empty: the character's own choice
-  // (DeepMimic's EnableFallContact). early_termination = false turns falls off (contact-rich clips).
+  // (DeepMimic's EnableFallContact); the one name "all" (kAllFallLinks): every body, for any
+  // character, with allow_clip_contacts sparing those the clip rests on (a walk's feet: DeepMimic's
+  // rule, any contact but the feet's). early_termination = false turns falls off (contact-rich clips).
   std::vector<std::string> fall_links;
   // Bodies that the clips themselves rest on the ground (CharacterEnv::allow_contacts_of: a
   // get-up's hands, elbows and back) touch it without a fall; the rest of fall_links stay falls. A

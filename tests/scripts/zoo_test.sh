@@ -23,7 +23,7 @@ before() { [[ -n $1 && -n $2 && $1 -lt $2 ]]; }
 if FAKE_SECONDS=1.5 FAKE_FAIL=dog3d scripts/zoo.sh -j 3 >out 2>&1; then fail "a failed skill did not fail the zoo"; fi
 grep -q "dog_trot failed (exit 4): see runs/zoo/dog_trot.log" out || fail "no failure line: $(cat out)"
 for name in humanoid_walk humanoid_run humanoid_kick humanoid_punch humanoid_walk_from_standing humanoid_cmu_walk humanoid_getup_facedown \
-            humanoid_getup_faceup humanoid_jumping_jack walker_ppo; do
+            humanoid_getup_faceup humanoid_jumping_jack humanoid_walk_tracking walker_ppo; do
   [[ -f models/$name/networks.mimic ]] || fail "models/$name was not made"
 done
 [[ ! -e models/dog_trot ]] || fail "the failed dog's model was copied"
@@ -35,6 +35,8 @@ awk '$2 ~ /^runs\/zoo\/[a-z_]+$/ && $3 != "demo" && $3 != "export" {n += ($1 == 
      END {exit !(most == 3)}' calls || fail "not three skills at a time at most and at least"
 grep -q "imitate /data/deepmimic/motions/humanoid3d_kick.txt -o runs/zoo/humanoid_kick --threads 1" calls || fail "the kick not at one thread"
 grep -q "train configs/walker_ppo.yaml -o runs/zoo/walker_ppo --threads 1" calls || fail "the walker not at one thread"
+grep -q "imitate /data/deepmimic/motions/humanoid3d_walk.txt --method tracking -o runs/zoo/humanoid_walk_tracking --threads 1" calls ||
+  fail "the tracked walk not by the tracking recipe"
 grep -q "imitate /data/cmu-bvh/131_01.bvh -o runs/zoo/humanoid_cmu_walk --threads 1" calls || fail "the CMU walk not from its BVH"
 grep -q "start-clips /data/deepmimic/motions/humanoid3d_getup_facedown.txt@-0.3 /data/deepmimic/motions/humanoid3d_getup_faceup.txt@-0.3" calls ||
   fail "the walk from standing not started from the get-ups' ends"
