@@ -471,6 +471,10 @@ if(EXISTS ${DATA}/deepmimic/motions/humanoid3d_walk.txt)
   run_ok(table ${OUT}/progress.json ${OUT}/put.json)
   expect_in("${LAST_OUT}" "| r | c | - | - | 0.229 ± 0.136 | 0.556 | 0 / 20 | 1 / 20 | 37 | 0.71 |")
   expect_in("${LAST_OUT}" "| s | c | - | - | - | - | 0 / 20 | - | - | - |")
+  # A run that is gone: its budget from the learning curve kept beside its evaluation (<name>.csv).
+  file(WRITE ${OUT}/progress.csv "iteration,samples,wall_s\n1,4096,30\n2,8192,150\n")
+  run_ok(table ${OUT}/progress.json)
+  expect_in("${LAST_OUT}" "| r | c | 0.01 M | 2 min | 0.229 ± 0.136 |")
   file(WRITE ${OUT}/bad.json "{\"episodes\": 2}")
   run_fails("bad.json" table ${OUT}/bad.json)
   # A run without a simulated character cannot be compared with a clip.

@@ -36,12 +36,15 @@ std::vector<double> smooth(const std::vector<double>& v, int window) {
 
 std::string cell(double v, const char* format) { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string("-"); }
 
-// Samples and wall time behind a run: the last row of its metrics.csv ("-" where it is gone).
-std::pair<std::string, std::string> budget_of(const std::filesystem::path& run) {
-  const std::filesystem::path csv = run / "metrics.csv";
+// Samples and wall time behind a run: the last row of its metrics.csv, or where the run is gone, of
+// the copy kept beside its evaluation (<eval>.csv beside <eval>.json: the scripts' committed
+// results); "-" where neither is there.
+std::pair<std::string, std::string> budget_of(const std::filesystem::path& run, const std::filesystem::path& eval_json) {
+  std::filesystem::path csv = run / "metrics.csv";
+  if (!std::filesystem::exists(csv)) csv = std::filesystem::path(eval_json).replace_extension(".csv");
   if (!std::filesystem::exists(csv)) {
-    spdlog::warn("{} not found: no budget for that row (the run's path is as mimic eval was given it, relative to where it ran)",
-                 csv.string());
+    spdlog::warn("{} not found, nor {}: no budget for that row (the run's path is as mimic eval was given it, relative to where it ran)",
+                 (run / "metrics.csv").string(), csv.string());
     return {"-", "-"};
   }
   const MetricsTable t = read_metrics_csv(csv);
@@ -228,7 +231,7 @@ void add_report_commands(CLI::App& app) {
         "|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < a.inputs.size(); ++i) {
       const EvalSummary e = read_eval_json(a.inputs[i]);
-      const auto [samples, wall] = budget_of(e.run);
+      const auto [samples, wall] = budget_of(e.run, a.inputs[i]);
       const std::string error = std::isfinite(e.error_mean) ? fmt::format("{:.3f} ± {:.3f}", e.error_mean, e.error_std) : "-";
       const std::string falls = e.falls >= 0 ? fmt::format("{} / {}", e.falls, e.trials) : "-";
       const std::string down = e.down >= 0 ? fmt::format("{} / {}", e.down, e.trials) : "-";
