@@ -165,8 +165,12 @@ void read_character_env(ConfigSection& s, const YamlReader& reader, CharacterEnv
   c.observations.height_map_ahead = s.number("height_map_ahead", c.observations.height_map_ahead, -100, 100);
   c.max_seconds = s.number("max_seconds", c.max_seconds, 1e-3, 1e6);
   // `fall_links: all` (every body; allow_clip_contacts then spares those the clip rests on) or a list.
-  c.fall_links = s.has("fall_links") && s.child("fall_links").IsScalar() ? std::vector<std::string>{s.choice("fall_links", "all", {"all"})}
-                                                                        : s.texts("fall_links", c.fall_links);
+  if (const YAML::Node links = s.child("fall_links"); links.IsScalar()) {
+    if (links.Scalar() != kAllFallLinks) reader.fail(links, s.name("fall_links") + ": a list of bodies, or all (every body); not '" + links.Scalar() + "'");
+    c.fall_links = {kAllFallLinks};
+  } else {
+    c.fall_links = s.texts("fall_links", c.fall_links);
+  }
   c.allow_clip_contacts = s.boolean("allow_clip_contacts", c.allow_clip_contacts);
   c.early_termination = s.boolean("early_termination", c.early_termination);
   c.fall_height = s.number("fall_height", c.fall_height, 0, 1);
