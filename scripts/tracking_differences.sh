@@ -12,9 +12,11 @@
 #   short_episodes   2 s episodes (evaluated on 20 s), any contact but the feet's a fall (3)
 #   annealed_noise   action noise σ from 0.2 down to 0.07 over the run (4)
 #   lag_observed     the reference's root in the observation (`reference_root`) (5)
+#   combined         the three that helped alone, together: short_episodes, annealed_noise and
+#                    lag_observed (the tracking recipe's settings)
 # Two runs at a time, one thread each. A finished run's evaluation and learning curve are kept in
 # RESULTS (default docs/data/tracking_differences: <name>.json and <name>.csv, its metrics.csv),
-# which is committed, so that the six runs can be made over several sessions and machines: a run
+# which is committed, so that the runs can be made over several sessions and machines: a run
 # whose evaluation is there is not trained again; one with a checkpoint in the out dir is resumed.
 # The table and the figure cover the runs whose results are there.
 # Usage: scripts/tracking_differences.sh [samples per run (default 5000000)] [out dir (default runs/tracking_differences)]
@@ -31,7 +33,7 @@ iterations=$(((samples + 4095) / 4096))
 [ -x "$mimic" ] || { echo "tracking_differences.sh: build mimic first (cmake --preset default && cmake --build --preset default)" >&2; exit 1; }
 export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
 mkdir -p "$out" "$results" "$figures"
-names=(baseline deepmimic_reward small_steps short_episodes annealed_noise lag_observed)
+names=(baseline deepmimic_reward small_steps short_episodes annealed_noise lag_observed combined)
 declare -A changes=(
   [baseline]=""
   [deepmimic_reward]="env.weights={pose: 0.5, velocity: 0.05, end_effector: 0.15, com: 0.1, root: 0.2};env.com_term=velocity;env.scales={com: 1};env.resync_root=true"
@@ -40,6 +42,7 @@ declare -A changes=(
   [annealed_noise]="policy.log_std_final=-2.66"
   [lag_observed]="env.observations=[full_state, phase, reference_root]"
 )
+changes[combined]="${changes[short_episodes]};${changes[annealed_noise]};${changes[lag_observed]}"
 
 report() {
   local finished=() name
@@ -74,7 +77,7 @@ train() {
     rm -rf "${out:?}/$name"
   fi
   local eval_sets=()
-  [[ $name == short_episodes ]] && eval_sets=(--set env.max_seconds=20)
+  [[ $name == short_episodes || $name == combined ]] && eval_sets=(--set env.max_seconds=20)
   {
     "$mimic" train "${start[@]}" -o "$out/$name" &&
       "$mimic" eval "$out/$name" --trials 20 "${eval_sets[@]}" --json "$out/$name.json" &&
