@@ -477,9 +477,10 @@ void write_report(const ImitateArgs& a, bool video, int processes) {
   std::string eval_sets;
   for (const std::string& setting : eval_settings(a.out / "model")) eval_sets += " --set " + setting;
   if (!eval_sets.empty())
-    text += fmt::format("Evaluated on episodes of {:.0f} s (`{}`), longer than those it trained on.\n\n", kEvalSeconds, eval_sets.substr(1));
+    text += fmt::format("{} on episodes of {:.0f} s (`{}`), longer than those it trained on.\n\n", video ? "Evaluated and filmed" : "Evaluated",
+                        kEvalSeconds, eval_sets.substr(1));
   text += "The model is `model/` (its clips and demonstrations inside): `mimic eval " + (a.out / "model").string() + eval_sets +
-          "`, `mimic render " + (a.out / "model").string() + " -o skill.mp4 --ghost`, or load it from a program with the runtime " +
+          "`, `mimic render " + (a.out / "model").string() + " -o skill.mp4 --ghost" + eval_sets + "`, or load it from a program with the runtime " +
           "(docs/runtime.md). The evaluation files hold the figures above.\n";
   write_file_atomic(a.out / "report.md", text);
 }
@@ -525,6 +526,7 @@ void imitate(const ImitateArgs& a) {
   if (a.video_seconds > 0) {
     PolicyVideoOptions o;
     o.width = 480, o.height = 360, o.seconds = a.video_seconds, o.ghost = true;
+    o.env_settings = eval_settings(model);  // a run trained on short episodes is filmed without restarts
     try {
       const PolicyVideoStats s = render_policy_video(model, a.out / "video.mp4", o);
       spdlog::info("filmed {} ({} frames; the translucent ghost is the clip)", (a.out / "video.mp4").string(), s.frames);
