@@ -31,7 +31,7 @@ mimic=${MIMIC:-build/src/mimic}
 # name -> the arguments of its one command (after `mimic`); -o runs/zoo/<name> is added.
 declare -A command=(
   [humanoid_walk]="imitate $motions/humanoid3d_walk.txt"
-  [humanoid_walk_tracking]="imitate $motions/humanoid3d_walk.txt --method tracking"
+  [humanoid_walk_tracking]="imitate $motions/humanoid3d_walk.txt --method tracking --samples 5000000"
   [humanoid_run]="imitate $motions/humanoid3d_run.txt --from runs/zoo/humanoid_walk/model"
   [humanoid_kick]="imitate $motions/humanoid3d_kick.txt"
   [humanoid_punch]="imitate $motions/humanoid3d_punch.txt --from runs/zoo/humanoid_walk/model"

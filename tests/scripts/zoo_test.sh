@@ -35,7 +35,7 @@ awk '$2 ~ /^runs\/zoo\/[a-z_]+$/ && $3 != "demo" && $3 != "export" {n += ($1 == 
      END {exit !(most == 3)}' calls || fail "not three skills at a time at most and at least"
 grep -q "imitate /data/deepmimic/motions/humanoid3d_kick.txt -o runs/zoo/humanoid_kick --threads 1" calls || fail "the kick not at one thread"
 grep -q "train configs/walker_ppo.yaml -o runs/zoo/walker_ppo --threads 1" calls || fail "the walker not at one thread"
-grep -q "imitate /data/deepmimic/motions/humanoid3d_walk.txt --method tracking -o runs/zoo/humanoid_walk_tracking --threads 1" calls ||
+grep -q "imitate /data/deepmimic/motions/humanoid3d_walk.txt --method tracking --samples 5000000 -o runs/zoo/humanoid_walk_tracking --threads 1" calls ||
   fail "the tracked walk not by the tracking recipe"
 grep -q "imitate /data/cmu-bvh/131_01.bvh -o runs/zoo/humanoid_cmu_walk --threads 1" calls || fail "the CMU walk not from its BVH"
 grep -q "start-clips /data/deepmimic/motions/humanoid3d_getup_facedown.txt@-0.3 /data/deepmimic/motions/humanoid3d_getup_faceup.txt@-0.3" calls ||
