@@ -436,8 +436,9 @@ fs::path eval_file(const fs::path& run, const fs::path& clip, std::size_t clips)
   return clips == 1 ? run / "eval.json" : run / ("eval_" + clip.stem().string() + ".json");
 }
 
-// `processes`: how many ranks trained it (mpirun).
-void write_report(const ImitateArgs& a, bool video, int processes) {
+// `overrides`: the env settings it was evaluated and filmed with (eval_settings); `processes`: how
+// many ranks trained it (mpirun).
+void write_report(const ImitateArgs& a, const std::vector<std::string>& overrides, bool video, int processes) {
   const MetricsTable t = read_metrics_csv(a.out / "metrics.csv");
   const std::string config_text = read_text_file(a.out / "config.yaml");
   const TrainConfig cfg = parse_train_config(config_text, (a.out / "config.yaml").string());
@@ -475,7 +476,7 @@ void write_report(const ImitateArgs& a, bool video, int processes) {
   text += "\n![learning curve](curves.png)\n\n";
   if (video) text += "Video: [video.mp4](video.mp4) (the translucent ghost is the clip).\n\n";
   std::string eval_sets;
-  for (const std::string& setting : eval_settings(a.out / "model")) eval_sets += " --set " + setting;
+  for (const std::string& setting : overrides) eval_sets += " --set " + setting;
   if (!eval_sets.empty())
     text += fmt::format("{} on episodes of {:.0f} s (`{}`), longer than those it trained on.\n\n", video ? "Evaluated and filmed" : "Evaluated",
                         kEvalSeconds, eval_sets.substr(1));
@@ -515,18 +516,19 @@ void imitate(const ImitateArgs& a) {
   const fs::path model = export_model(a.out);
   // Against each clip: eval.json for one, eval_<clip>.json for several.
   const std::vector<fs::path> clips = clips_of(model);
+  const std::vector<std::string> settings = eval_settings(model);  // evaluated, filmed and reported alike
   for (const fs::path& clip : clips) {
     EvalArgs e;
     // The clip named: an imitation environment draws starts from its clips but tracks none.
     e.run = model, e.episodes = a.trials, e.trials = a.trials, e.json = eval_file(a.out, clip, clips.size()), e.clip = clip;
-    e.settings = eval_settings(model);
+    e.settings = settings;
     evaluate(e);
   }
   bool video = false;
   if (a.video_seconds > 0) {
     PolicyVideoOptions o;
     o.width = 480, o.height = 360, o.seconds = a.video_seconds, o.ghost = true;
-    o.env_settings = eval_settings(model);  // a run trained on short episodes is filmed without restarts
+    o.env_settings = settings;  // a run trained on short episodes is filmed without restarts
     try {
       const PolicyVideoStats s = render_policy_video(model, a.out / "video.mp4", o);
       spdlog::info("filmed {} ({} frames; the translucent ghost is the clip)", (a.out / "video.mp4").string(), s.frames);
@@ -536,7 +538,7 @@ void imitate(const ImitateArgs& a) {
     }
   }
   write_curves(a.out);
-  write_report(a, video, trained_by);
+  write_report(a, settings, video, trained_by);
   spdlog::info("wrote {}: the model, its evaluation, {}curves.png and report.md", a.out.string(), video ? "video.mp4, " : "");
 }
 
