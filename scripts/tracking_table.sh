@@ -45,16 +45,12 @@ for c in "${clips[@]}"; do names+=("$c"); clip_of[$c]=$motions/humanoid3d_$c.txt
 names+=(dog_trot)
 clip_of[dog_trot]=$motions/dog3d_trot.txt
 character_of[dog_trot]=$data/deepmimic/characters/dog3d.txt
-for c in backflip cartwheel; do
-  names+=("${c}_fsi")
-  set_of[${c}_fsi]="env.init=fixed"
-  for k in 5 10 20; do
-    [[ $c == cartwheel && $k != 10 ]] && continue
-    names+=("${c}_asi$k")
-    set_of[${c}_asi$k]="init={kind: adaptive, components: $k, episodes: 500}"
-  done
-  for n in "${c}_fsi" "${c}_asi5" "${c}_asi10" "${c}_asi20"; do [[ -n ${set_of[$n]:-} ]] && clip_of[$n]=$motions/humanoid3d_$c.txt; done
-done
+# start NAME CLIP SETTING: a Table 2 run, CLIP from another start distribution.
+start() { names+=("$1"); clip_of[$1]=$motions/humanoid3d_$2.txt; set_of[$1]=$3; }
+asi() { echo "init={kind: adaptive, components: $1, episodes: 500}"; }
+for c in backflip cartwheel; do start "${c}_fsi" "$c" "env.init=fixed"; done
+for k in 5 10 20; do start "backflip_asi$k" backflip "$(asi "$k")"; done
+start cartwheel_asi10 cartwheel "$(asi 10)"
 for n in "${asked[@]}"; do
   [[ -n ${clip_of[$n]:-} ]] || { echo "tracking_table.sh: no run '$n' (known: ${names[*]})" >&2; exit 2; }
 done
